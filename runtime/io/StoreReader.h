@@ -1,0 +1,40 @@
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "runtime/core/Result.h"
+#include "runtime/io/StoreTypes.h"
+
+namespace kiosk::io {
+
+/**
+ * @brief Read-only access to one geokiosk store (a GeoPackage 1.3 file).
+ *
+ * Threads: one StoreReader per thread (each owns a read-only SQLite connection opened with
+ * SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX and its own prepared statements). Safe while another
+ * process appends to the store in WAL mode. Never throws. A missing or corrupt tile is an error
+ * for that tile only (code STORE_TILE_MISSING / STORE_TILE_CORRUPT naming layer and tile).
+ */
+class StoreReader {
+public:
+    virtual ~StoreReader() = default;
+
+    /** @brief Open and read the metadata; errors name the file (STORE_OPEN, STORE_NOT_GEOKIOSK). */
+    static Result<std::unique_ptr<StoreReader>> open(const std::filesystem::path& path);
+
+    virtual const StoreInfo& info() const noexcept = 0;
+
+    /** @brief Elevation posts of one tile, decoded to metres (scale/offset applied). */
+    virtual Result<RasterTile> readElevation(const std::string& layer, const TileId& id) = 0;
+    /** @brief Imagery tile as RGBA8. */
+    virtual Result<ImageTile> readImagery(const std::string& layer, const TileId& id) = 0;
+    /** @brief One frame of a sequence, decoded to data units; same post layout as elevation. */
+    virtual Result<RasterTile> readSequenceFrame(const std::string& sequence, int frame,
+                                                 const TileId& id) = 0;
+    /** @brief Min/max/error of a tile without decoding it; nullopt if the tile is absent. */
+    virtual std::optional<TileStats> tileStats(const std::string& layer, const TileId& id) = 0;
+};
+
+}  // namespace kiosk::io

@@ -1,0 +1,46 @@
+#pragma once
+
+#include "runtime/math/Glm.h"
+
+namespace kiosk::math {
+
+/**
+ * @brief An orbit view: look at `target` (world CRS metres, z up) from `range` metres away,
+ * `headingDeg` clockwise from north, `pitchDeg` below the horizon is negative (-90 = straight down).
+ * This is the form scenarios use for viewpoints and camera paths.
+ */
+struct Viewpoint {
+    glm::dvec3 target{0.0};
+    double headingDeg = 0.0;
+    double pitchDeg = -45.0;
+    double range = 1000.0;
+};
+
+/** @brief A perspective camera in double precision. */
+struct Camera {
+    glm::dvec3 eye{0.0};
+    glm::dvec3 forward{0.0, 1.0, 0.0};
+    glm::dvec3 up{0.0, 0.0, 1.0};
+    double fovYDeg = 45.0;
+    double aspect = 16.0 / 9.0;
+    double nearPlane = 1.0;
+    double farPlane = 100000.0;
+    int viewportWidth = 1280;
+    int viewportHeight = 720;
+
+    static Camera fromViewpoint(const Viewpoint& vp, int viewportWidth, int viewportHeight,
+                                double fovYDeg = 45.0);
+
+    /** @brief View matrix relative to `origin` (so float precision holds near the camera). */
+    glm::dmat4 view(const glm::dvec3& origin = glm::dvec3(0.0)) const;
+    glm::dmat4 projection() const;
+    /**
+     * @brief Pixels per metre of a length seen face-on at `distance` metres:
+     * viewportHeight / (2 tan(fovY/2) distance). Screen-space error = error * this.
+     */
+    double pixelsPerMetreAt(double distance) const;
+    /** @brief Near/far planes chosen to bracket a scene of the given world bounds. */
+    void fitClipPlanes(const glm::dvec3& boundsMin, const glm::dvec3& boundsMax);
+};
+
+}  // namespace kiosk::math
