@@ -1,0 +1,60 @@
+#include "runtime/app/FrameStats.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+namespace kiosk::app {
+
+double percentile(std::vector<double> v, double p) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const double rank = std::clamp(p, 0.0, 100.0) / 100.0 * double(v.size() - 1);
+    const auto lo = static_cast<std::size_t>(std::floor(rank));
+    const auto hi = std::min(lo + 1, v.size() - 1);
+    return v[lo] + (v[hi] - v[lo]) * (rank - double(lo));
+}
+
+std::string FrameStats::toJson() const {
+    nlohmann::json j;
+    std::vector<double> ms;
+    auto& frames = j["frames"];
+    frames = nlohmann::json::object();
+    for (const auto& f : mFrames) {
+        ms.push_back(f.frameMs);
+        frames["frame_ms"].push_back(f.frameMs);
+        frames["tiles_drawn"].push_back(f.tilesDrawn);
+        frames["triangles"].push_back(f.triangles);
+        frames["tiles_from_ancestor"].push_back(f.tilesFromAncestor);
+        frames["sequence_tiles_missing"].push_back(f.sequenceTilesMissing);
+        frames["resident_bytes"].push_back(f.residentBytes);
+        frames["data_time"].push_back(f.dataTime);
+    }
+    j["summary"] = {{"frames", mFrames.size()},
+                    {"frame_ms", {{"median", percentile(ms, 50)},
+                                  {"p95", percentile(ms, 95)},
+                                  {"p99", percentile(ms, 99)}}}};
+    return j.dump(1);
+}
+
+bool FrameStats::write(const std::filesystem::path& path, Diagnostics& diags) const {
+    const auto tmp = path.string() + ".tmp";
+    {
+        std::ofstream f(tmp);
+        if (!(f << toJson() << '\n')) {
+            diags.error("OUTPUT_WRITE", path.string(), "", "cannot write statistics");
+            return false;
+        }
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        diags.error("OUTPUT_WRITE", path.string(), "", "cannot write statistics: " + ec.message());
+        return false;
+    }
+    return true;
+}
+
+}  // namespace kiosk::app

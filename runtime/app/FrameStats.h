@@ -1,0 +1,42 @@
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "runtime/core/Diagnostics.h"
+
+namespace kiosk::app {
+
+/** @brief One frame's record (docs/cli.md `--stats`). */
+struct FrameRecord {
+    double frameMs = 0;
+    std::uint32_t tilesDrawn = 0;
+    std::uint64_t triangles = 0;
+    std::uint32_t tilesFromAncestor = 0;
+    std::uint32_t sequenceTilesMissing = 0;
+    std::uint64_t residentBytes = 0;
+    double dataTime = 0;  ///< scenario time shown (epoch seconds)
+};
+
+/** @brief Percentile by linear interpolation between closest ranks (p in [0,100]). */
+double percentile(std::vector<double> values, double p);
+
+/**
+ * @brief Collects frame records; preallocated so recording never allocates in the frame loop
+ * until the reserve is exhausted.
+ */
+class FrameStats {
+public:
+    explicit FrameStats(std::size_t reserve = 4096) { mFrames.reserve(reserve); }
+    void add(const FrameRecord& r) { mFrames.push_back(r); }
+    const std::vector<FrameRecord>& frames() const noexcept { return mFrames; }
+    /** @brief JSON object: per-frame arrays plus summary {median,p95,p99} of frame_ms. */
+    std::string toJson() const;
+    bool write(const std::filesystem::path& path, Diagnostics& diags) const;
+
+private:
+    std::vector<FrameRecord> mFrames;
+};
+
+}  // namespace kiosk::app

@@ -1,0 +1,35 @@
+#include "runtime/render/GpuMesh.h"
+
+namespace kiosk::render {
+
+GpuMesh GpuMesh::upload(const MeshData& mesh) {
+    GpuMesh m;
+    m.mVao = gl::VertexArray::create();
+    m.mVertices = gl::Buffer::create();
+    m.mIndices = gl::Buffer::create();
+    glBindVertexArray(m.mVao.id());
+    glBindBuffer(GL_ARRAY_BUFFER, m.mVertices.id());
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.vertices.size() * sizeof(float)),
+                 mesh.vertices.data(), GL_STATIC_DRAW);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.mIndices.id());
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
+                 mesh.indices.data(), GL_STATIC_DRAW);
+    constexpr GLsizei stride = MeshData::kFloatsPerVertex * sizeof(float);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(3 * sizeof(float)));
+    glBindVertexArray(0);
+    m.mIndexCount = GLsizei(mesh.indices.size());
+    m.mBytes = mesh.byteSize();
+    return m;
+}
+
+void GpuMesh::draw() const {
+    if (!valid()) return;  // an invalid resource is skipped, never drawn (sokol rule)
+    glBindVertexArray(mVao.id());
+    glDrawElements(GL_TRIANGLES, mIndexCount, GL_UNSIGNED_INT, nullptr);
+}
+
+}  // namespace kiosk::render
