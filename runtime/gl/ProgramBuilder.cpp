@@ -24,6 +24,24 @@ std::string infoLog(GLuint object, bool isProgram) {
     return log;
 }
 
+bool compileText(GLenum stage, const std::string& name, const std::string& source,
+                 const std::vector<std::string>& fileNames, Shader& out, Diagnostics& diags) {
+    Shader shader(glCreateShader(stage));
+    const char* text = source.c_str();
+    glShaderSource(shader.id(), 1, &text, nullptr);
+    glCompileShader(shader.id());
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        for (const auto& line : mapInfoLog(infoLog(shader.id(), false), fileNames))
+            diags.error("SHADER_COMPILE", "", "", line);
+        if (!diags.hasErrors()) diags.error("SHADER_COMPILE", name, "", "compile failed");
+        return false;
+    }
+    out = std::move(shader);
+    return true;
+}
+
 bool compile(GLenum stage, const std::string& name, const std::vector<std::string>& defines,
              Shader& out, Diagnostics& diags) {
     auto expanded = ShaderLibrary::expand(name, defines);
@@ -31,20 +49,22 @@ bool compile(GLenum stage, const std::string& name, const std::vector<std::strin
         diags.append(expanded.diagnostics);
         return false;
     }
-    Shader shader(glCreateShader(stage));
-    const char* text = expanded->text.c_str();
-    glShaderSource(shader.id(), 1, &text, nullptr);
-    glCompileShader(shader.id());
+    return compileText(stage, name, expanded->text, expanded->fileNames, out, diags);
+}
+
+Result<Program> link(const Shader& vs, const Shader& fs, const std::string& name) {
+    auto program = Program::create();
+    glAttachShader(program.id(), vs.id());
+    glAttachShader(program.id(), fs.id());
+    glLinkProgram(program.id());
     GLint ok = GL_FALSE;
-    glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
+    glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
     if (!ok) {
-        for (const auto& line : mapInfoLog(infoLog(shader.id(), false), expanded->fileNames))
-            diags.error("SHADER_COMPILE", "", "", line);
-        if (!diags.hasErrors()) diags.error("SHADER_COMPILE", name, "", "compile failed");
-        return false;
+        Diagnostics diags;
+        diags.error("SHADER_LINK", name, "", "link failed: " + infoLog(program.id(), true));
+        return diags;
     }
-    out = std::move(shader);
-    return true;
+    return program;
 }
 
 }  // namespace
@@ -76,18 +96,18 @@ Result<Program> buildProgram(const std::string& vertexName, const std::string& f
     Shader vs, fs;
     if (!compile(GL_VERTEX_SHADER, vertexName, defines, vs, diags)) return diags;
     if (!compile(GL_FRAGMENT_SHADER, fragmentName, defines, fs, diags)) return diags;
-    auto program = Program::create();
-    glAttachShader(program.id(), vs.id());
-    glAttachShader(program.id(), fs.id());
-    glLinkProgram(program.id());
-    GLint ok = GL_FALSE;
-    glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
-    if (!ok) {
-        diags.error("SHADER_LINK", vertexName + "+" + fragmentName, "",
-                    "link failed: " + infoLog(program.id(), true));
+    return link(vs, fs, vertexName + "+" + fragmentName);
+}
+
+Result<Program> buildProgramWithFragmentText(const std::string& vertexName,
+                                             const std::string& fragmentName,
+                                             const std::string& fragmentText) {
+    Diagnostics diags;
+    Shader vs, fs;
+    if (!compile(GL_VERTEX_SHADER, vertexName, {}, vs, diags)) return diags;
+    if (!compileText(GL_FRAGMENT_SHADER, fragmentName, fragmentText, {fragmentName}, fs, diags))
         return diags;
-    }
-    return program;
+    return link(vs, fs, vertexName + "+" + fragmentName);
 }
 
 }  // namespace kiosk::gl

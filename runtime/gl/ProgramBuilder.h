@@ -17,6 +17,14 @@ Result<Program> buildProgram(const std::string& vertexName, const std::string& f
                              const std::vector<std::string>& defines = {});
 
 /**
+ * @brief Same, with the fragment stage given as complete generated text (including
+ * `#version`); `fragmentName` names it in diagnostics.
+ */
+Result<Program> buildProgramWithFragmentText(const std::string& vertexName,
+                                             const std::string& fragmentName,
+                                             const std::string& fragmentText);
+
+/**
  * @brief Rewrite a driver info log ("0:12(5): error: ..." from Mesa, "ERROR: 0:12: ..." from
  * others) so source-string numbers become file names. Pure, unit-tested.
  */

@@ -1,6 +1,7 @@
 #include "runtime/render/TerrainRenderer.h"
 
 #include <cmath>
+#include <string>
 
 #include "runtime/gl/ProgramBuilder.h"
 #include "runtime/render/Textures.h"
@@ -13,47 +14,78 @@ glm::vec3 sunDirection(double azimuthDeg, double altitudeDeg) {
                                                std::cos(az) * std::cos(alt), std::sin(alt))));
 }
 
-Result<TerrainRenderer> TerrainRenderer::create() {
-    auto program = gl::buildProgram("terrain.vert", "terrain.frag");
+Result<TerrainRenderer> TerrainRenderer::create(const CompositeProgramDesc& desc,
+                                                int maxTextureUnits) {
+    auto fragment = generateCompositeShader(desc, maxTextureUnits);
+    if (!fragment) return fragment.diagnostics;
+    auto program = gl::buildProgramWithFragmentText("terrain.vert", "terrain(generated).frag",
+                                                    *fragment);
     if (!program) return program.diagnostics;
     TerrainRenderer r;
+    r.mDesc = desc;
     r.mProgram = std::move(*program.value);
     const GLuint p = r.mProgram.id();
-    r.mLocMvp = glGetUniformLocation(p, "uModelViewProj");
-    r.mLocOrigin = glGetUniformLocation(p, "uOrigin");
-    r.mLocExtentMin = glGetUniformLocation(p, "uExtentMin");
-    r.mLocExtentSize = glGetUniformLocation(p, "uExtentSize");
-    r.mLocVScale = glGetUniformLocation(p, "uVerticalScale");
-    r.mLocLut = glGetUniformLocation(p, "uLut");
-    r.mLocLutSize = glGetUniformLocation(p, "uLutSize");
-    r.mLocLutDomain = glGetUniformLocation(p, "uLutDomain");
-    r.mLocDrape = glGetUniformLocation(p, "uDrape");
-    r.mLocDrapeWeight = glGetUniformLocation(p, "uDrapeWeight");
-    r.mLocLight = glGetUniformLocation(p, "uLightDir");
-    r.mLocAmbient = glGetUniformLocation(p, "uAmbient");
-    // Neutral defaults so a renderer without LUT or drape still draws grey shaded terrain.
+    auto loc = [p](const std::string& name) { return glGetUniformLocation(p, name.c_str()); };
+    r.mLocMvp = loc("uModelViewProj");
+    r.mLocOrigin = loc("uOrigin");
+    r.mLocVScale = loc("uVerticalScale");
+    r.mLocElevLut = loc("uElevLut");
+    r.mLocElevLutSize = loc("uElevLutSize");
+    r.mLocElevDomain = loc("uElevLutDomain");
+    r.mLocElevWeight = loc("uElevLutWeight");
+    r.mLocBase = loc("uBaseColor");
+    r.mLocLight = loc("uLightDir");
+    r.mLocAmbient = loc("uAmbient");
+    r.mLocGeomLight = loc("uGeometryLighting");
+    for (std::size_t i = 0; i < desc.layers.size(); ++i) {
+        const std::string n = std::to_string(i);
+        r.mLayerLocs.push_back({loc("uLayer" + n), loc("uLayerB" + n), loc("uLayerRect" + n),
+                                loc("uLayerParam" + n)});
+    }
+    for (int k = 0; k < desc.lutCount; ++k) {
+        const std::string n = std::to_string(k);
+        r.mLutLocs.push_back({loc("uLut" + n), loc("uLutDomain" + n), loc("uLutSize" + n),
+                              loc("uLutNodata" + n), loc("uLutBelow" + n), loc("uLutAbove" + n)});
+    }
+    r.mLuts.resize(std::size_t(desc.lutCount));
+    for (std::size_t j = 0; j < desc.lenses.size(); ++j)
+        r.mLensLocs.push_back({loc("uLens" + std::to_string(j)), loc("uLensParam" + std::to_string(j))});
+    r.mLenses.resize(desc.lenses.size());
     const std::uint8_t grey[8] = {180, 180, 180, 255, 180, 180, 180, 255};
-    r.setLut(2, grey, 0.0f, 1.0f);
-    r.setDrape(1, 1, grey, glm::dvec2(0.0), glm::dvec2(1.0));
+    r.setElevationLut(2, grey, 0.0f, 1.0f);
+    const std::uint8_t clear[4] = {0, 0, 0, 0};
+    r.mNeutral = makeRgbaTexture(1, 1, clear, false);
     return r;
 }
 
-void TerrainRenderer::setLut(int size, const std::uint8_t* rgba, float domainMin,
-                             float domainMax) {
-    mLut = makeLutTexture(size, rgba);
-    mLutSize = float(size);
-    mLutDomain = glm::vec2(domainMin, domainMax);
+void TerrainRenderer::setElevationLut(int size, const std::uint8_t* rgba, float domainMin,
+                                      float domainMax) {
+    mElevLut = makeLutTexture(size, rgba);
+    mElevLutSize = float(size);
+    mElevDomain = glm::vec2(domainMin, domainMax);
 }
 
-void TerrainRenderer::setDrape(int width, int height, const std::uint8_t* rgba,
-                               glm::dvec2 extentMin, glm::dvec2 extentMax) {
-    mDrape = makeRgbaTexture(width, height, rgba, true);
-    mExtentMin = extentMin;
-    mExtentMax = extentMax;
+void TerrainRenderer::setLut(int index, const LutBinding& lut) {
+    if (index >= 0 && index < int(mLuts.size())) mLuts[std::size_t(index)] = lut;
 }
 
-void TerrainRenderer::begin(const math::Camera& camera, const TerrainStyle& style) {
+void TerrainRenderer::setLens(int index, const LensBinding& lens) {
+    if (index >= 0 && index < int(mLenses.size())) mLenses[std::size_t(index)] = lens;
+}
+
+// Unit layout: 0 elevation LUT, 1..lutCount transfer LUTs, then layers (sequence layers take
+// two consecutive units).
+int TerrainRenderer::layerUnit(int i) const {
+    int unit = 1 + mDesc.lutCount;
+    for (int j = 0; j < i; ++j)
+        unit += mDesc.layers[std::size_t(j)].kind == LayerKind::Sequence ? 2 : 1;
+    return unit;
+}
+
+void TerrainRenderer::begin(const math::Camera& camera, const glm::dvec3& sceneOrigin,
+                            const TerrainStyle& style) {
     mCamera = &camera;
+    mSceneOrigin = sceneOrigin;
     mProjection = camera.projection();
     glUseProgram(mProgram.id());
     glEnable(GL_DEPTH_TEST);
@@ -61,28 +93,73 @@ void TerrainRenderer::begin(const math::Camera& camera, const TerrainStyle& styl
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
     glFrontFace(GL_CCW);
+    glDisable(GL_BLEND);
     glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, mLut.id());
-    glUniform1i(mLocLut, 0);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, mDrape.id());
-    glUniform1i(mLocDrape, 1);
-    glUniform1f(mLocLutSize, mLutSize);
-    glUniform2f(mLocLutDomain, mLutDomain.x, mLutDomain.y);
-    glUniform1f(mLocDrapeWeight, style.drapeWeight);
+    glBindTexture(GL_TEXTURE_2D, mElevLut.id());
+    glUniform1i(mLocElevLut, 0);
+    glUniform1f(mLocElevLutSize, mElevLutSize);
+    glUniform2f(mLocElevDomain, mElevDomain.x, mElevDomain.y);
+    glUniform1f(mLocElevWeight, style.elevationLutWeight);
+    glUniform4f(mLocBase, style.baseColor.r, style.baseColor.g, style.baseColor.b, style.baseColor.a);
     glUniform3f(mLocLight, style.lightDir.x, style.lightDir.y, style.lightDir.z);
     glUniform1f(mLocAmbient, style.ambient);
+    glUniform1f(mLocGeomLight, style.geometryLighting);
     glUniform1f(mLocVScale, style.verticalScale);
-    const glm::dvec2 size = glm::max(mExtentMax - mExtentMin, glm::dvec2(1e-9));
-    glUniform2f(mLocExtentMin, float(mExtentMin.x), float(mExtentMin.y));
-    glUniform2f(mLocExtentSize, float(size.x), float(size.y));
+    for (std::size_t k = 0; k < mLuts.size(); ++k) {
+        const auto& lut = mLuts[k];
+        const auto& l = mLutLocs[k];
+        glActiveTexture(GLenum(GL_TEXTURE1 + k));
+        glBindTexture(GL_TEXTURE_2D, lut.texture ? lut.texture : mNeutral.id());
+        glUniform1i(l.tex, GLint(1 + k));
+        glUniform2f(l.domain, lut.domainMin, lut.domainMax);
+        glUniform1f(l.size, float(lut.size));
+        glUniform4fv(l.nodata, 1, glm::value_ptr(lut.nodata));
+        glUniform4fv(l.below, 1, glm::value_ptr(lut.below));
+        glUniform4fv(l.above, 1, glm::value_ptr(lut.above));
+    }
+    for (std::size_t j = 0; j < mLenses.size(); ++j) {
+        const auto& lens = mLenses[j];
+        const glm::dvec2 c = lens.centre - glm::dvec2(sceneOrigin);
+        glUniform4f(mLensLocs[j][0], float(c.x), float(c.y), float(lens.radii.x), float(lens.radii.y));
+        glUniform4f(mLensLocs[j][1], lens.softEdge, lens.insideGain, lens.outsideGain,
+                    lens.enabled ? 1.0f : 0.0f);
+    }
+    for (int i = 0; i < int(mDesc.layers.size()); ++i) setLayer(i, {});
+}
+
+void TerrainRenderer::setLayer(int index, const LayerBinding& b) {
+    if (index < 0 || index >= int(mLayerLocs.size())) return;
+    const auto& l = mLayerLocs[std::size_t(index)];
+    const int unit = layerUnit(index);
+    glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+    glBindTexture(GL_TEXTURE_2D, b.valid && b.texture ? b.texture : mNeutral.id());
+    glUniform1i(l.tex, unit);
+    if (l.texB >= 0) {
+        glActiveTexture(GLenum(GL_TEXTURE0 + unit + 1));
+        glBindTexture(GL_TEXTURE_2D, b.valid && b.textureB ? b.textureB : mNeutral.id());
+        glUniform1i(l.texB, unit + 1);
+    }
+    // uv = (scenePos - (west, north)) * (1/width, -1/height): row 0 of a texture is its north edge.
+    glUniform4f(l.rect, float(b.west - mSceneOrigin.x), float(b.north - mSceneOrigin.y),
+                float(1.0 / b.width), float(-1.0 / b.height));
+    const int lut = [&] {
+        // The LUT index of a data layer is its rank among data/sequence layers.
+        int k = 0;
+        for (int j = 0; j < index; ++j) {
+            const auto kind = mDesc.layers[std::size_t(j)].kind;
+            k += kind == LayerKind::Data || kind == LayerKind::Sequence;
+        }
+        return k;
+    }();
+    glUniform4f(l.param, b.strength, b.alpha, float(lut), b.valid ? 1.0f : 0.0f);
 }
 
 void TerrainRenderer::draw(const GpuMesh& mesh, const glm::dvec3& origin, bool fromAncestor) {
     if (!mCamera || !mesh.valid()) return;
     const glm::mat4 mvp(mProjection * mCamera->view(origin));
     glUniformMatrix4fv(mLocMvp, 1, GL_FALSE, glm::value_ptr(mvp));
-    glUniform3f(mLocOrigin, float(origin.x), float(origin.y), float(origin.z));
+    const glm::dvec3 rel = origin - mSceneOrigin;
+    glUniform3f(mLocOrigin, float(rel.x), float(rel.y), float(origin.z));
     mesh.draw();
     ++mCounters.tilesDrawn;
     mCounters.triangles += mesh.triangleCount();

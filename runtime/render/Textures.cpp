@@ -1,5 +1,8 @@
 #include "runtime/render/Textures.h"
 
+#include <cmath>
+#include <vector>
+
 namespace kiosk::render {
 
 gl::Texture makeRgbaTexture(int width, int height, const std::uint8_t* rgba, bool mipmaps) {
@@ -21,6 +24,45 @@ gl::Texture makeRgbaTexture(int width, int height, const std::uint8_t* rgba, boo
 
 gl::Texture makeLutTexture(int size, const std::uint8_t* rgba) {
     return makeRgbaTexture(size, 1, rgba, false);
+}
+
+namespace {
+void setLinearClamp() {
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+}
+}  // namespace
+
+gl::Texture makeScalarTexture(int width, int height, const float* values,
+                              std::optional<float> nodataAs) {
+    std::vector<float> rg(std::size_t(width) * std::size_t(height) * 2);
+    for (std::size_t i = 0, n = rg.size() / 2; i < n; ++i) {
+        const float v = values[i];
+        if (std::isnan(v)) {
+            rg[i * 2] = nodataAs.value_or(0.0f);
+            rg[i * 2 + 1] = nodataAs ? 1.0f : 0.0f;
+        } else {
+            rg[i * 2] = v;
+            rg[i * 2 + 1] = 1.0f;
+        }
+    }
+    auto tex = gl::Texture::create();
+    glBindTexture(GL_TEXTURE_2D, tex.id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RG16F, width, height, 0, GL_RG, GL_FLOAT, rg.data());
+    setLinearClamp();
+    return tex;
+}
+
+gl::Texture makeR8Texture(int width, int height, const std::uint8_t* values) {
+    auto tex = gl::Texture::create();
+    glBindTexture(GL_TEXTURE_2D, tex.id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, width, height, 0, GL_RED, GL_UNSIGNED_BYTE, values);
+    setLinearClamp();
+    return tex;
 }
 
 }  // namespace kiosk::render

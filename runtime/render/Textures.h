@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
 #include "runtime/gl/GlObject.h"
 
@@ -14,5 +15,18 @@ gl::Texture makeRgbaTexture(int width, int height, const std::uint8_t* rgba, boo
  * so that any number of stops costs one fetch.
  */
 gl::Texture makeLutTexture(int size, const std::uint8_t* rgba);
+
+/**
+ * @brief Scalar raster (data units, NaN = nodata) as RG16F: R = value x validity, G = validity,
+ * so linear filtering followed by R/G averages valid neighbours only (nodata never bleeds into
+ * values) and G fades smoothly at data edges. RG16F is filterable in core ES 3.0. When
+ * `nodataAs` is set, nodata samples become that value with validity 1 (e.g. depth 0 on dry
+ * land, so wet/dry fronts interpolate instead of popping).
+ */
+gl::Texture makeScalarTexture(int width, int height, const float* values,
+                              std::optional<float> nodataAs);
+
+/** @brief Single-channel 8-bit texture (hillshade, luminance, visibility masks). */
+gl::Texture makeR8Texture(int width, int height, const std::uint8_t* values);
 
 }  // namespace kiosk::render

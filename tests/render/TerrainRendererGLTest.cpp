@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "runtime/render/FillBound.h"
+#include "runtime/render/OverlayRenderer.h"
 #include "tests/support/EglTestContext.h"
 #include "tests/support/GoldenImage.h"
 #include "tests/support/MeshFixtures.h"
@@ -27,7 +28,7 @@ TEST_F(TerrainRendererGLTest, FlatPlaneShowsLutColourAtItsElevation) {
     ASSERT_TRUE(renderer.ok()) << renderer.diagnostics.format();
     // Three-stop LUT over 0..200 m: at 100 m the centre texel is exactly (10, 200, 30).
     const std::uint8_t lut[] = {255, 0, 0, 255, 10, 200, 30, 255, 0, 0, 255, 255};
-    renderer->setLut(3, lut, 0.0f, 200.0f);
+    renderer->setElevationLut(3, lut, 0.0f, 200.0f);
     auto mesh = GpuMesh::upload(test::gridMesh(5, 250.0, [](double, double) { return 100.0; }));
     auto cam = topDown({500.0, 500.0, 100.0}, 800.0, 64, 64);
     cam.fitClipPlanes({0, 0, 0}, {1000, 1000, 200});
@@ -36,7 +37,7 @@ TEST_F(TerrainRendererGLTest, FlatPlaneShowsLutColourAtItsElevation) {
     TerrainStyle style;
     style.lightDir = {0, 0, 1};  // sun overhead: a flat surface gets full light
     style.ambient = 0.2f;
-    renderer->begin(cam, style);
+    renderer->begin(cam, glm::dvec3(0.0), style);
     renderer->draw(mesh, glm::dvec3(0.0));
     renderer->end();
     EXPECT_GL_OK();
@@ -54,7 +55,7 @@ TEST_F(TerrainRendererGLTest, HillIsLitOnTheSunSideAndMatchesGolden) {
     auto renderer = TerrainRenderer::create();
     ASSERT_TRUE(renderer.ok()) << renderer.diagnostics.format();
     const std::uint8_t lut[] = {60, 120, 60, 255, 200, 190, 170, 255};
-    renderer->setLut(2, lut, 0.0f, 400.0f);
+    renderer->setElevationLut(2, lut, 0.0f, 400.0f);
     auto hill = [](double x, double y) {
         const double dx = x - 1000.0, dy = y - 1000.0;
         return 400.0 * std::exp(-(dx * dx + dy * dy) / (2.0 * 300.0 * 300.0));
@@ -67,7 +68,7 @@ TEST_F(TerrainRendererGLTest, HillIsLitOnTheSunSideAndMatchesGolden) {
     TerrainStyle style;
     style.lightDir = sunDirection(270.0, 30.0);  // sun in the west, low
     style.ambient = 0.1f;
-    renderer->begin(cam, style);
+    renderer->begin(cam, glm::dvec3(0.0), style);
     renderer->draw(mesh, glm::dvec3(0.0));
     renderer->end();
     EXPECT_GL_OK();
@@ -84,15 +85,15 @@ TEST_F(TerrainRendererGLTest, BrokenShaderOverrideFailsWithShaderNameAndKeepsRun
     const auto dir = std::filesystem::temp_directory_path() / "kiosk-broken-shader";
     std::filesystem::create_directories(dir);
     {
-        std::ofstream f(dir / "terrain.frag");
+        std::ofstream f(dir / "overlay.frag");
         f << "#version 300 es\nprecision highp float;\nout vec4 c;\nvoid main() { c = nope; }\n";
     }
     setenv("GEOKIOSK_SHADER_DIR", dir.c_str(), 1);
-    auto renderer = TerrainRenderer::create();
+    auto renderer = OverlayRenderer::create(FontAtlas::defaultFontPath(), 16);
     unsetenv("GEOKIOSK_SHADER_DIR");
     ASSERT_FALSE(renderer.ok());
     EXPECT_TRUE(renderer.diagnostics.has("SHADER_COMPILE"));
-    EXPECT_NE(renderer.diagnostics.format().find("terrain.frag:4"), std::string::npos)
+    EXPECT_NE(renderer.diagnostics.format().find("overlay.frag:4"), std::string::npos)
         << renderer.diagnostics.format();
     // The embedded shader still builds afterwards.
     EXPECT_TRUE(TerrainRenderer::create().ok());

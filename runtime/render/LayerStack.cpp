@@ -1,0 +1,194 @@
+#include "runtime/render/LayerStack.h"
+
+#include <sstream>
+
+#include "runtime/gl/ShaderLibrary.h"
+
+namespace kiosk::render {
+namespace {
+
+// Text shared by every generated program: inputs, lighting and LUT helpers. Kept here rather
+// than in runtime/shaders because it is spliced around generated code.
+constexpr const char* kPrelude = R"(precision highp float;
+precision highp sampler2D;
+
+in vec3 vNormal;
+in float vElevation;
+in vec2 vScenePos;
+
+uniform vec3 uLightDir;
+uniform float uAmbient;
+uniform float uGeometryLighting;  // 1: Lambert from mesh normals; 0: shading comes from layers
+uniform vec4 uBaseColor;
+uniform sampler2D uElevLut;
+uniform vec2 uElevLutDomain;
+uniform float uElevLutSize;
+uniform float uElevLutWeight;      // 0: uBaseColor, 1: hypsometric tint
+
+out vec4 fragColor;
+
+float lensMask(vec4 lens, float softEdge, vec2 p) {
+    vec2 d = (p - lens.xy) / max(lens.zw, vec2(1e-6));
+    float r = length(d);
+    float edge = max(softEdge, 1e-6);
+    return 1.0 - smoothstep(1.0 - edge, 1.0, r);
+}
+)";
+
+}  // namespace
+
+int textureUnitsNeeded(const CompositeProgramDesc& desc) {
+    int units = 1 + desc.lutCount;  // elevation LUT + transfer-function LUTs
+    for (const auto& l : desc.layers) units += l.kind == LayerKind::Sequence ? 2 : 1;
+    return units;
+}
+
+Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
+                                            int maxTextureUnits) {
+    Diagnostics diags;
+    const int units = textureUnitsNeeded(desc);
+    if (units > maxTextureUnits) {
+        diags.error("RENDER_TOO_MANY_LAYERS", "", "",
+                    "layer stack needs " + std::to_string(units) + " texture units, the GPU has " +
+                        std::to_string(maxTextureUnits));
+        return diags;
+    }
+    const int n = static_cast<int>(desc.layers.size());
+    for (int i = 0; i < n; ++i) {
+        const auto& l = desc.layers[std::size_t(i)];
+        if (l.op == LayerOp::Blend &&
+            (l.visibilityLayer < 0 || l.visibilityLayer >= n || l.visibilityLayer == i)) {
+            diags.error("RENDER_BAD_BLEND", "", "layer " + std::to_string(i),
+                        "blend needs another layer of the stack as its visibility source");
+        }
+    }
+    if (diags.hasErrors()) return diags;
+
+    // Shared helpers come from the shader library so the GLSL and its C++ mirror
+    // (color::lutCoordinate) have one source of truth.
+    std::ostringstream s;
+    s << "#version 300 es\n" << kPrelude;
+    for (const char* lib : {"common/encode.glsl", "common/lighting.glsl"}) {
+        auto text = gl::ShaderLibrary::source(lib);
+        if (!text) return text.diagnostics;
+        s << *text << "\n";
+    }
+    for (int i = 0; i < n; ++i) {
+        s << "uniform sampler2D uLayer" << i << ";\n";
+        if (desc.layers[std::size_t(i)].kind == LayerKind::Sequence)
+            s << "uniform sampler2D uLayerB" << i << ";\n";
+        s << "uniform vec4 uLayerRect" << i << ";\nuniform vec4 uLayerParam" << i << ";\n";
+    }
+    for (int k = 0; k < desc.lutCount; ++k) {
+        s << "uniform sampler2D uLut" << k << ";\nuniform vec2 uLutDomain" << k
+          << ";\nuniform float uLutSize" << k << ";\nuniform vec4 uLutNodata" << k
+          << ";\nuniform vec4 uLutBelow" << k << ";\nuniform vec4 uLutAbove" << k << ";\n";
+    }
+    for (std::size_t j = 0; j < desc.lenses.size(); ++j)
+        s << "uniform vec4 uLens" << j << ";\nuniform vec4 uLensParam" << j << ";\n";
+
+    s << "\nvoid main() {\n"
+         "    vec3 C = mix(uBaseColor.rgb, texture(uElevLut, vec2(lutCoord(vElevation, "
+         "uElevLutDomain, uElevLutSize), 0.5)).rgb, uElevLutWeight);\n"
+         "    vec3 background = C;\n";
+    // Lens masks first: visibility lenses gate whole layers.
+    for (std::size_t j = 0; j < desc.lenses.size(); ++j)
+        s << "    float lens" << j << " = uLensParam" << j << ".w * lensMask(uLens" << j
+          << ", uLensParam" << j << ".x, vScenePos);\n";
+    // Every layer's sample is computed up front so Blend can reference any visibility layer.
+    for (int i = 0; i < n; ++i) {
+        const auto& l = desc.layers[std::size_t(i)];
+        s << "    vec2 uv" << i << " = (vScenePos - uLayerRect" << i << ".xy) * uLayerRect" << i
+          << ".zw;\n";
+        switch (l.kind) {
+            case LayerKind::Thematic:
+                s << "    vec4 L" << i << " = texture(uLayer" << i << ", uv" << i << ");\n";
+                break;
+            case LayerKind::Luminance:
+                s << "    vec4 L" << i << " = vec4(vec3(2.0 * texture(uLayer" << i << ", uv" << i
+                  << ").r), 1.0);\n";
+                break;
+            case LayerKind::Topographic:
+                s << "    vec4 L" << i << " = texture(uLayer" << i << ", uv" << i
+                  << ").rrra;\n";
+                break;
+            case LayerKind::Visibility:
+                s << "    vec4 L" << i << " = vec4(1.0, 1.0, 1.0, texture(uLayer" << i << ", uv"
+                  << i << ").r);\n";
+                break;
+            case LayerKind::Data:
+            case LayerKind::Sequence: {
+                // RG = (value premultiplied by validity, validity): filtering then dividing
+                // gives the mean of valid neighbours, so nodata never bleeds into values.
+                s << "    vec2 d" << i << " = texture(uLayer" << i << ", uv" << i << ").rg;\n";
+                if (l.kind == LayerKind::Sequence) {
+                    // Interpolate DATA values, then colour (issue 6): never blend two colours.
+                    s << "    vec2 e" << i << " = texture(uLayerB" << i << ", uv" << i
+                      << ").rg;\n    d" << i << " = mix(d" << i << ", e" << i << ", uLayerParam"
+                      << i << ".y);\n";
+                }
+                s << "    vec4 L" << i << " = vec4(0.0);\n"
+                  << "    {\n        float v = d" << i << ".r / max(d" << i << ".g, 1e-6);\n";
+                // The LUT index is a per-layer constant baked in by the generator.
+                s << "        int k = int(uLayerParam" << i << ".z + 0.5);\n";
+                for (int k = 0; k < desc.lutCount; ++k) {
+                    s << "        if (k == " << k << ") {\n"
+                      << "            vec4 c = texture(uLut" << k << ", vec2(lutCoord(v, uLutDomain"
+                      << k << ", uLutSize" << k << "), 0.5));\n"
+                      << "            if (v < uLutDomain" << k << ".x && uLutBelow" << k
+                      << ".a >= 0.0) c = uLutBelow" << k << ";\n"
+                      << "            if (v > uLutDomain" << k << ".y && uLutAbove" << k
+                      << ".a >= 0.0) c = uLutAbove" << k << ";\n"
+                      << "            L" << i << " = d" << i << ".g >= 0.5 ? c : uLutNodata" << k
+                      << ";\n        }\n";
+                }
+                s << "    }\n";
+                break;
+            }
+        }
+    }
+    for (int i = 0; i < n; ++i) {
+        const auto& l = desc.layers[std::size_t(i)];
+        if (l.kind == LayerKind::Visibility && l.op == LayerOp::Over) continue;  // mask source only
+        s << "    {\n        float w = uLayerParam" << i << ".x * uLayerParam" << i << ".w;\n";
+        for (std::size_t j = 0; j < desc.lenses.size(); ++j) {
+            const auto& lens = desc.lenses[j];
+            if (lens.kind != LensKind::Visibility) continue;
+            if (lens.insideLayer == i) s << "        w *= lens" << j << ";\n";
+            if (lens.outsideLayer == i) s << "        w *= 1.0 - lens" << j << ";\n";
+        }
+        const std::string L = "L" + std::to_string(i);
+        switch (l.op) {
+            case LayerOp::Over:
+                s << "        C = mix(C, " << L << ".rgb, clamp(" << L << ".a * w, 0.0, 1.0));\n";
+                break;
+            case LayerOp::Blend:
+                s << "        C = mix(C, " << L << ".rgb, clamp(L" << l.visibilityLayer
+                  << ".a * " << L << ".a * w, 0.0, 1.0));\n";
+                break;
+            case LayerOp::Add:
+                s << "        C = C + " << L << ".rgb * " << L << ".a * w;\n";
+                break;
+            case LayerOp::Modulate:
+                s << "        C = C * mix(vec3(1.0), " << L << ".rgb, clamp(" << L
+                  << ".a * w, 0.0, 1.0));\n";
+                break;
+            case LayerOp::Mask:
+                s << "        C = mix(C, background, clamp((1.0 - " << L
+                  << ".a) * w, 0.0, 1.0));\n";
+                break;
+        }
+        s << "    }\n";
+    }
+    s << "    C *= mix(1.0, lambert(vNormal, uLightDir, uAmbient), uGeometryLighting);\n";
+    for (std::size_t j = 0; j < desc.lenses.size(); ++j) {
+        if (desc.lenses[j].kind != LensKind::Highlight) continue;
+        // Highlight lens: luminance raised inside, lowered outside, soft edge.
+        s << "    C *= mix(mix(1.0, uLensParam" << j << ".z, uLensParam" << j
+          << ".w), uLensParam" << j << ".y, lens" << j << ");\n";
+    }
+    s << "    fragColor = vec4(clamp(C, 0.0, 1.0), 1.0);\n}\n";
+    return s.str();
+}
+
+}  // namespace kiosk::render

@@ -1,0 +1,72 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "runtime/core/Result.h"
+
+namespace kiosk::render {
+
+/**
+ * @brief What a layer contributes to the terrain's colour (Döllner 2000, §3-4 texture layers).
+ * - Thematic: an RGBA image (imagery, land use), applied by its operation.
+ * - Luminance: a grey texture that brightens/darkens what is below (L * 2 around 0.5 = neutral).
+ * - Topographic: a shading texture (hillshade) that modulates what is below.
+ * - Visibility: an alpha mask; contributes no colour, used by Blend operations of other layers.
+ * - Data: a scalar raster (RG16F: value, validity) coloured by a transfer-function LUT.
+ * - Sequence: two scalar frames interpolated in data space at alpha, then the LUT.
+ */
+enum class LayerKind { Thematic, Luminance, Topographic, Visibility, Data, Sequence };
+
+/**
+ * @brief How a layer's colour L combines with the colour C accumulated so far (chained in
+ * stack order: each result feeds the next layer).
+ * - Over:     C = mix(C, L.rgb, L.a * opacity)
+ * - Blend:    C = mix(C, L.rgb, V * opacity), V from the referenced visibility layer
+ * - Add:      C = C + L.rgb * L.a * weight
+ * - Modulate: C = C * mix(1, L.rgb, weight)
+ * - Mask:     C = mix(background, C, L.a)   (L from a visibility or any layer's alpha)
+ */
+enum class LayerOp { Over, Blend, Add, Modulate, Mask };
+
+struct CompositeLayer {
+    LayerKind kind = LayerKind::Thematic;
+    LayerOp op = LayerOp::Over;
+    int visibilityLayer = -1;  ///< index into the stack for Blend
+};
+
+/** @brief Lens kinds of Döllner §5 / Trapp's focus+context. */
+enum class LensKind { Highlight, Visibility };
+
+struct CompositeLens {
+    LensKind kind = LensKind::Highlight;
+    int insideLayer = -1;   ///< Visibility lens: layer shown inside
+    int outsideLayer = -1;  ///< Visibility lens: layer shown outside
+};
+
+struct CompositeProgramDesc {
+    std::vector<CompositeLayer> layers;
+    std::vector<CompositeLens> lenses;
+    int lutCount = 0;  ///< distinct LUTs referenced by Data/Sequence layers
+};
+
+/**
+ * @brief Generate the terrain fragment shader for a layer stack: every layer sampled and
+ * combined in ONE pass (no GL calls here; unit-tested on the text, compiled in GL tests).
+ * Uniform interface (set by TerrainRenderer per frame / per tile):
+ *   uLayer[i]          sampler2D of layer i's texture for the current tile
+ *   uLayerB[i]         second frame for Sequence layers (same sampler for others)
+ *   uLayerRect[i]      vec4(originX, originY, 1/sizeX, 1/sizeY): scene metres -> uv
+ *   uLayerParam[i]     vec4(opacity or weight, sequence alpha, lut index, valid 0/1)
+ *   uLut[k], uLutDomain[k]
+ *   uLens[j]           vec4(centreX, centreY, radiusX, radiusY); uLensParam[j] vec4(softEdge,
+ *                      inside gain, outside gain, enabled)
+ * Fails (RENDER_TOO_MANY_LAYERS) when samplers exceed `maxTextureUnits`; the caller then
+ * splits the stack (documented fallback: extra passes).
+ */
+Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc, int maxTextureUnits);
+
+/** @brief Texture units the program needs (layers, second frames, LUTs, lighting). */
+int textureUnitsNeeded(const CompositeProgramDesc& desc);
+
+}  // namespace kiosk::render
