@@ -28,9 +28,11 @@ function(kiosk_test name)
     cmake_parse_arguments(ARG "" "LABEL" "SOURCES;LIBS" ${ARGN})
     add_executable(${name} ${ARG_SOURCES})
     kiosk_configure_target(${name})
-    target_link_libraries(${name} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gtest_main)
+    # kiosk_test_main sets the driver pins and data paths (gtest_discover_tests cannot pass a
+    # multi-variable ENVIRONMENT list through its PROPERTIES).
+    target_link_libraries(${name} PRIVATE ${ARG_LIBS} kiosk_test_main GTest::gtest)
     gtest_discover_tests(${name}
         WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
-        PROPERTIES LABELS "${ARG_LABEL}" ENVIRONMENT "${KIOSK_TEST_ENV}"
+        PROPERTIES LABELS "${ARG_LABEL}"
         DISCOVERY_TIMEOUT 60)
 endfunction()

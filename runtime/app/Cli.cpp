@@ -7,6 +7,7 @@
 #include "runtime/app/InfoCommand.h"
 #include "runtime/app/PlayCommand.h"
 #include "runtime/app/RenderCommand.h"
+#include "runtime/app/TopographicCommand.h"
 #include "runtime/app/ValidateCommand.h"
 #include "runtime/core/ExitCode.h"
 #include "runtime/core/Strings.h"
@@ -25,6 +26,8 @@ std::string usageText() {
   import elevation SRC --store STORE [--name NAME]
   import imagery   SRC --store STORE --name NAME
   import sequence  SRC... --store STORE --name NAME [--times TIMES.csv] [--variable VAR]
+  import topographic --store STORE [--elevation LAYER] [--name NAME] [--azimuth DEG]
+                     [--altitude DEG] [--variant default|multidirectional|combined] [--shadows]
         build or extend a store (a GeoPackage) from GDAL-readable rasters and model output
   validate SCENARIO...
         check scenarios against the schema and their stores
@@ -56,6 +59,8 @@ int dispatch(const std::vector<std::string>& args) {
     }
     if (cmd == "play") return runPlayCommand(rest);
     if (cmd == "render") return runRenderCommand(rest);
+    if (cmd == "import" && !rest.empty() && rest[0] == "topographic")
+        return runImportTopographic({rest.begin() + 1, rest.end()});
     if (cmd == "import") return runImportCommand(rest);
     if (cmd == "validate") return runValidateCommand(rest);
     if (cmd == "info") return runInfoCommand(rest);

@@ -1,8 +1,18 @@
 #include "runtime/gl/RenderTarget.h"
 
+#include <cstdio>
 #include <cstring>
+#include <string>
 
 namespace kiosk::gl {
+
+namespace {
+std::string hex(GLenum value) {
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "0x%04X", value);
+    return buf;
+}
+}  // namespace
 
 Result<RenderTarget> RenderTarget::create(int width, int height) {
     RenderTarget rt;
@@ -23,7 +33,7 @@ Result<RenderTarget> RenderTarget::create(int width, int height) {
         Diagnostics d;
         d.error("GL_FRAMEBUFFER_INCOMPLETE", "", "",
                 "offscreen framebuffer " + std::to_string(width) + "x" + std::to_string(height) +
-                    " is incomplete (status 0x" + std::to_string(status) + ")");
+                    " is incomplete (status " + hex(status) + ")");
         return d;
     }
     return rt;

@@ -53,6 +53,7 @@ struct LayerInfo {
     std::optional<double> nodata;       ///< in data units, as declared by the source
     int levels = 0;         ///< number of pyramid levels present
     std::int64_t tileCount = 0;
+    double precision = 0;   ///< quantisation step of stored values (scalar layers), data units
     /** @brief Data extent (may be smaller than the grid bounds), CRS units. */
     double dataMinX = 0, dataMinY = 0, dataMaxX = 0, dataMaxY = 0;
 };

@@ -3,17 +3,23 @@
 namespace kiosk::render {
 
 GpuMesh GpuMesh::upload(const MeshData& mesh) {
+    return upload(mesh.vertices.data(), mesh.vertices.size(), mesh.indices.data(),
+                  mesh.indices.size());
+}
+
+GpuMesh GpuMesh::upload(const float* vertices, std::size_t floatCount,
+                        const std::uint32_t* indices, std::size_t indexCount) {
     GpuMesh m;
     m.mVao = gl::VertexArray::create();
     m.mVertices = gl::Buffer::create();
     m.mIndices = gl::Buffer::create();
     glBindVertexArray(m.mVao.id());
     glBindBuffer(GL_ARRAY_BUFFER, m.mVertices.id());
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.vertices.size() * sizeof(float)),
-                 mesh.vertices.data(), GL_STATIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(floatCount * sizeof(float)), vertices,
+                 GL_STATIC_DRAW);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.mIndices.id());
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
-                 mesh.indices.data(), GL_STATIC_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indexCount * sizeof(std::uint32_t)), indices,
+                 GL_STATIC_DRAW);
     constexpr GLsizei stride = MeshData::kFloatsPerVertex * sizeof(float);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
@@ -21,8 +27,8 @@ GpuMesh GpuMesh::upload(const MeshData& mesh) {
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride,
                           reinterpret_cast<const void*>(3 * sizeof(float)));
     glBindVertexArray(0);
-    m.mIndexCount = GLsizei(mesh.indices.size());
-    m.mBytes = mesh.byteSize();
+    m.mIndexCount = GLsizei(indexCount);
+    m.mBytes = floatCount * sizeof(float) + indexCount * sizeof(std::uint32_t);
     return m;
 }
 

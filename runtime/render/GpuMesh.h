@@ -10,6 +10,9 @@ class GpuMesh {
 public:
     GpuMesh() = default;
     static GpuMesh upload(const MeshData& mesh);
+    /** @brief Interleaved float3 position + float3 normal vertices, uint32 triangle indices. */
+    static GpuMesh upload(const float* vertices, std::size_t floatCount,
+                          const std::uint32_t* indices, std::size_t indexCount);
 
     void draw() const;
     bool valid() const noexcept { return static_cast<bool>(mVao) && mIndexCount > 0; }

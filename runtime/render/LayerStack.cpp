@@ -24,6 +24,7 @@ uniform sampler2D uElevLut;
 uniform vec2 uElevLutDomain;
 uniform float uElevLutSize;
 uniform float uElevLutWeight;      // 0: uBaseColor, 1: hypsometric tint
+uniform vec4 uClip;
 
 out vec4 fragColor;
 
@@ -88,6 +89,8 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
         s << "uniform vec4 uLens" << j << ";\nuniform vec4 uLensParam" << j << ";\n";
 
     s << "\nvoid main() {\n"
+         "    if (any(lessThan(vScenePos, uClip.xy)) || any(greaterThan(vScenePos, uClip.zw))) "
+         "discard;\n"
          "    vec3 C = mix(uBaseColor.rgb, texture(uElevLut, vec2(lutCoord(vElevation, "
          "uElevLutDomain, uElevLutSize), 0.5)).rgb, uElevLutWeight);\n"
          "    vec3 background = C;\n";
@@ -120,7 +123,10 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
             case LayerKind::Sequence: {
                 // RG = (value premultiplied by validity, validity): filtering then dividing
                 // gives the mean of valid neighbours, so nodata never bleeds into values.
-                s << "    vec2 d" << i << " = texture(uLayer" << i << ", uv" << i << ").rg;\n";
+                if (l.fromElevation)
+                    s << "    vec2 d" << i << " = vec2(vElevation, 1.0);\n";
+                else
+                    s << "    vec2 d" << i << " = texture(uLayer" << i << ", uv" << i << ").rg;\n";
                 if (l.kind == LayerKind::Sequence) {
                     // Interpolate DATA values, then colour (issue 6): never blend two colours.
                     s << "    vec2 e" << i << " = texture(uLayerB" << i << ", uv" << i

@@ -33,6 +33,11 @@ struct CompositeLayer {
     LayerKind kind = LayerKind::Thematic;
     LayerOp op = LayerOp::Over;
     int visibilityLayer = -1;  ///< index into the stack for Blend
+    /**
+     * @brief Data layer whose value is the terrain's own elevation (interpolated per fragment
+     * from the mesh): hypsometric tinting without a texture. Its uLayer sampler is unused.
+     */
+    bool fromElevation = false;
 };
 
 /** @brief Lens kinds of Döllner §5 / Trapp's focus+context. */
@@ -61,6 +66,8 @@ struct CompositeProgramDesc {
  *   uLut[k], uLutDomain[k]
  *   uLens[j]           vec4(centreX, centreY, radiusX, radiusY); uLensParam[j] vec4(softEdge,
  *                      inside gain, outside gain, enabled)
+ *   uClip              vec4(minX, minY, maxX, maxY) scene metres: fragments outside are
+ *                      discarded (an ancestor's mesh drawn for one quadrant while it loads)
  * Fails (RENDER_TOO_MANY_LAYERS) when samplers exceed `maxTextureUnits`; the caller then
  * splits the stack (documented fallback: extra passes).
  */

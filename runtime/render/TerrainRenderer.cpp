@@ -37,6 +37,7 @@ Result<TerrainRenderer> TerrainRenderer::create(const CompositeProgramDesc& desc
     r.mLocLight = loc("uLightDir");
     r.mLocAmbient = loc("uAmbient");
     r.mLocGeomLight = loc("uGeometryLighting");
+    r.mLocClip = loc("uClip");
     for (std::size_t i = 0; i < desc.layers.size(); ++i) {
         const std::string n = std::to_string(i);
         r.mLayerLocs.push_back({loc("uLayer" + n), loc("uLayerB" + n), loc("uLayerRect" + n),
@@ -90,9 +91,9 @@ void TerrainRenderer::begin(const math::Camera& camera, const glm::dvec3& sceneO
     glUseProgram(mProgram.id());
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
-    glEnable(GL_CULL_FACE);
-    glCullFace(GL_BACK);
-    glFrontFace(GL_CCW);
+    // Skirts face outwards and hang below the surface; culling would save little on a height
+    // field seen from above and risks dropping skirt faces, so it stays off.
+    glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, mElevLut.id());
@@ -155,7 +156,16 @@ void TerrainRenderer::setLayer(int index, const LayerBinding& b) {
 }
 
 void TerrainRenderer::draw(const GpuMesh& mesh, const glm::dvec3& origin, bool fromAncestor) {
+    constexpr double kHuge = 1e30;
+    draw(mesh, origin, fromAncestor, glm::dvec2(-kHuge), glm::dvec2(kHuge));
+}
+
+void TerrainRenderer::draw(const GpuMesh& mesh, const glm::dvec3& origin, bool fromAncestor,
+                           const glm::dvec2& clipMin, const glm::dvec2& clipMax) {
     if (!mCamera || !mesh.valid()) return;
+    const glm::dvec2 o(mSceneOrigin);
+    glUniform4f(mLocClip, float(clipMin.x - o.x), float(clipMin.y - o.y), float(clipMax.x - o.x),
+                float(clipMax.y - o.y));
     const glm::mat4 mvp(mProjection * mCamera->view(origin));
     glUniformMatrix4fv(mLocMvp, 1, GL_FALSE, glm::value_ptr(mvp));
     const glm::dvec3 rel = origin - mSceneOrigin;

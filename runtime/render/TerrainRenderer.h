@@ -85,6 +85,9 @@ public:
     void setLayer(int index, const LayerBinding& binding);
     /** @brief Draw one mesh whose vertex positions are relative to `origin` (world metres). */
     void draw(const GpuMesh& mesh, const glm::dvec3& origin, bool fromAncestor = false);
+    /** @brief Same, keeping only fragments inside the world rectangle [clipMin, clipMax]. */
+    void draw(const GpuMesh& mesh, const glm::dvec3& origin, bool fromAncestor,
+              const glm::dvec2& clipMin, const glm::dvec2& clipMax);
     void end();
 
     DrawCounters& counters() noexcept { return mCounters; }
@@ -115,7 +118,7 @@ private:
     const math::Camera* mCamera = nullptr;
     GLint mLocMvp = -1, mLocOrigin = -1, mLocVScale = -1, mLocElevLut = -1, mLocElevLutSize = -1,
           mLocElevDomain = -1, mLocElevWeight = -1, mLocBase = -1, mLocLight = -1,
-          mLocAmbient = -1, mLocGeomLight = -1;
+          mLocAmbient = -1, mLocGeomLight = -1, mLocClip = -1;
     DrawCounters mCounters;
 };
 

@@ -1,0 +1,184 @@
+// Frame-time benchmark (issues 2, 4, 6): renders a deterministic camera flight of a scenario
+// headless on llvmpipe and prints ONE JSON object: per size, frame time p50/p95/p99, fps,
+// triangles and tiles per frame, tiles drawn from ancestors, and the baselines measured in the
+// same run: the llvmpipe fill bound (a full-screen quad doing the same texture fetches per
+// pixel) and, unless --no-fullres, the same flight with the full-resolution mesh (tauGeom 0).
+//
+// usage: bench-frame SCENARIO [--sizes 1280x720,1920x1080] [--frames N] [--no-fullres]
+//                             [--warmup-timeout S]
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "runtime/app/FrameStats.h"
+#include "runtime/app/Session.h"
+#include "runtime/core/Clock.h"
+#include "runtime/core/Strings.h"
+#include "runtime/gl/Context.h"
+#include "runtime/gl/RenderTarget.h"
+#include "runtime/platform/Display.h"
+#include "runtime/render/FillBound.h"
+
+using namespace kiosk;
+
+namespace {
+
+struct Flight {
+    std::vector<double> frameMs;
+    std::vector<double> triangles, tiles, fromAncestor, missing;
+};
+
+double peakRssMb() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_maxrss) / 1024.0;
+}
+
+/** Orbit the overview viewpoint while time advances: deterministic and repeatable. */
+math::Viewpoint flightView(const app::Session& s, int i, int n) {
+    math::Viewpoint vp = const_cast<app::Session&>(s).terrain().overviewViewpoint();
+    const double a = double(i) / double(std::max(1, n - 1));
+    vp.headingDeg += 90.0 * a;
+    vp.range *= 1.0 - 0.5 * a;  // move in: finer tiles load during the flight
+    vp.pitchDeg = -35.0 - 10.0 * a;
+    return vp;
+}
+
+Flight fly(app::Session& s, int width, int height, int frames, bool settleFirst) {
+    Flight f;
+    RealClock clock;
+    const double span = s.endTime() - s.startTime();
+    for (int i = 0; i < frames; ++i) {
+        const double t = s.startTime() + (span > 0 ? span * double(i) / double(frames) : 0.0);
+        const math::Camera cam = app::makeCamera(flightView(s, i, frames), s.terrain().bounds(),
+                                                 width, height, 45.0);
+        if (i == 0 && settleFirst) {
+            // Warm-up: the first view fully resident, as a kiosk is after start-up.
+            for (int k = 0; k < 20000 && !s.terrain().settled(); ++k) s.drawFrame(cam, t, width, height);
+        }
+        const double t0 = clock.now();
+        auto rec = s.drawFrame(cam, t, width, height);
+        glFinish();
+        f.frameMs.push_back((clock.now() - t0) * 1000.0);
+        f.triangles.push_back(double(rec.triangles));
+        f.tiles.push_back(double(rec.tilesDrawn));
+        f.fromAncestor.push_back(double(rec.tilesFromAncestor));
+        f.missing.push_back(double(rec.sequenceTilesMissing));
+    }
+    return f;
+}
+
+double mean(const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x;
+    return v.empty() ? 0 : s / double(v.size());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: bench-frame SCENARIO [--sizes WxH,...] [--frames N] [--no-fullres]\n");
+        return 2;
+    }
+    std::string scenario = argv[1];
+    std::vector<std::pair<int, int>> sizes{{1280, 720}, {1920, 1080}};
+    int frames = 120;
+    bool fullres = true;
+    for (int i = 2; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) frames = std::max(2, std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--no-fullres")) fullres = false;
+        else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
+            sizes.clear();
+            std::string list = argv[++i];
+            for (std::size_t p = 0; p <= list.size();) {
+                auto q = list.find(',', p);
+                if (q == std::string::npos) q = list.size();
+                if (auto wh = parseSize(list.substr(p, q - p))) sizes.push_back(*wh);
+                p = q + 1;
+            }
+        }
+    }
+    platform::DisplayOptions dopts;
+    dopts.kind = platform::DisplayKind::Headless;
+    auto display = platform::createDisplay(dopts);
+    if (!display) {
+        std::fprintf(stderr, "%s", display.diagnostics.format().c_str());
+        return 3;
+    }
+    auto caps = gl::initContext();
+    if (!caps) return 3;
+    nlohmann::json out;
+    out["benchmark"] = "frame";
+    out["scenario"] = scenario;
+    out["renderer"] = caps->renderer;
+    out["frames"] = frames;
+    for (auto [w, h] : sizes) {
+        auto target = gl::RenderTarget::create(w, h);
+        if (!target) return 3;
+        target->bind();
+        auto session = app::Session::open(scenario, *caps);
+        if (!session) {
+            std::fprintf(stderr, "%s", session.diagnostics.format().c_str());
+            return 1;
+        }
+        const std::size_t layers = (*session)->scenario().layers.size();
+        Flight lod = fly(**session, w, h, frames, true);
+        nlohmann::json r;
+        r["size"] = std::to_string(w) + "x" + std::to_string(h);
+        r["frame_ms"] = {{"p50", app::percentile(lod.frameMs, 50)},
+                         {"p95", app::percentile(lod.frameMs, 95)},
+                         {"p99", app::percentile(lod.frameMs, 99)}};
+        r["fps"] = 1000.0 / std::max(1e-9, app::percentile(lod.frameMs, 50));
+        r["triangles_mean"] = mean(lod.triangles);
+        r["tiles_mean"] = mean(lod.tiles);
+        r["frames_with_ancestor_tiles"] =
+            std::count_if(lod.fromAncestor.begin(), lod.fromAncestor.end(), [](double x) { return x > 0; });
+        r["frames_with_missing_sequence_tiles"] =
+            std::count_if(lod.missing.begin(), lod.missing.end(), [](double x) { return x > 0; });
+        // Baseline 1: the fill bound with the same number of texture fetches per pixel.
+        const int fetches = int(layers) + 1;
+        auto fill = render::FillBound::create(fetches);
+        if (fill) {
+            std::vector<double> ms;
+            RealClock clock;
+            for (int i = 0; i < 30; ++i) {
+                const double t0 = clock.now();
+                glClear(GL_COLOR_BUFFER_BIT);
+                fill->draw();
+                glFinish();
+                ms.push_back((clock.now() - t0) * 1000.0);
+            }
+            const double fb = app::percentile(ms, 50);
+            r["fill_bound_ms"] = fb;
+            r["fill_bound_fetches_per_pixel"] = fetches;
+            r["ratio_to_fill_bound"] = app::percentile(lod.frameMs, 50) / std::max(1e-9, fb);
+        }
+        session->reset();
+        // Baseline 2: the same flight with the full-resolution mesh everywhere.
+        if (fullres) {
+            auto full = app::Session::open(scenario, *caps, [](config::Scenario& sc) {
+                sc.terrain.tauGeom = 0.0;
+                sc.terrain.tauTex = 0.0;
+            });
+            if (full) {
+                Flight fr = fly(**full, w, h, std::min(frames, 20), true);
+                r["fullres_frame_ms_p50"] = app::percentile(fr.frameMs, 50);
+                r["fullres_triangles_mean"] = mean(fr.triangles);
+                r["triangle_ratio_lod_to_fullres"] = mean(lod.triangles) / std::max(1.0, mean(fr.triangles));
+                r["speedup_vs_fullres"] = app::percentile(fr.frameMs, 50) /
+                                          std::max(1e-9, app::percentile(lod.frameMs, 50));
+            }
+        }
+        out["results"].push_back(r);
+    }
+    out["peak_rss_mb"] = peakRssMb();
+    std::printf("%s\n", out.dump().c_str());
+    return 0;
+}

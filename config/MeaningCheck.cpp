@@ -1,0 +1,200 @@
+#include "config/MeaningCheck.h"
+
+#include "runtime/core/Strings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <vector>
+
+namespace kiosk::config {
+
+namespace {
+
+std::string quote(const std::string& s) {
+    return "\"" + s + "\"";
+}
+
+std::string num(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
+
+class Checker {
+public:
+    Checker(const Scenario& s, const StoreLookup& lookup) : mS(s), mLookup(lookup) {}
+
+    Diagnostics run() {
+        for (const auto& [id, store] : mS.stores) {
+            if (!mLookup(id))
+                error("SCENARIO_STORE_UNAVAILABLE", store.pointer,
+                      "store " + quote(id) + " (" + store.path.string() + ") could not be opened");
+        }
+        terrain();
+        for (const auto& l : mS.layers) layer(l);
+        for (const auto& m : mS.projectiveMappings) mapping(m);
+        return std::move(mDiags);
+    }
+
+private:
+    Diagnostic& at(Diagnostic& d, const std::string& ptr) {
+        const Location l = mS.sourceMap.value(ptr);
+        d.file = l.file;
+        d.line = l.line;
+        d.column = l.column;
+        return d;
+    }
+    Diagnostic& error(const char* code, const std::string& ptr, std::string msg) {
+        return at(mDiags.error(code, "", ptr, std::move(msg)), ptr);
+    }
+    Diagnostic& warning(const char* code, const std::string& ptr, std::string msg) {
+        return at(mDiags.warning(code, "", ptr, std::move(msg)), ptr);
+    }
+
+    const io::StoreInfo* store(const std::string& id) const {
+        return mS.stores.count(id) ? mLookup(id) : nullptr;
+    }
+
+    template <class T>
+    void unknown(const char* code, const std::string& ptr, const std::string& what,
+                 const std::string& name, const std::string& storeId, const std::vector<T>& items) {
+        std::vector<std::string> names;
+        for (const auto& i : items) names.push_back(i.name);
+        auto& e = error(code, ptr,
+                        "store " + quote(storeId) + " has no " + what + " " + quote(name) +
+                            (names.empty() ? std::string() : " (it has: " + [&] {
+                                std::string all;
+                                for (const auto& n : names) all += (all.empty() ? "" : ", ") + n;
+                                return all;
+                            }() + ")"));
+        if (auto m = closestMatch(name, names)) e.hint = "did you mean " + quote(*m) + "?";
+    }
+
+    void terrain() {
+        const auto* info = store(mS.terrain.store);
+        if (!info) return;
+        const auto* l = info->findLayer(mS.terrain.elevation);
+        if (!l) {
+            unknown("SCENARIO_UNKNOWN_LAYER", "/terrain/elevation", "layer", mS.terrain.elevation,
+                    mS.terrain.store, info->layers);
+        } else if (l->kind != io::LayerKind::Elevation) {
+            error("SCENARIO_LAYER_KIND", "/terrain/elevation",
+                  "layer " + quote(l->name) + " is not an elevation layer");
+        }
+    }
+
+    // Value range of the data a transfer function will colour, with its units.
+    struct DataRange {
+        double min = 0, max = 0;
+        std::string units;
+        std::string what;
+    };
+
+    void transferFits(const std::string& ptr, const std::string& tfName, const DataRange& r) {
+        const TransferFunctionDef* def = mS.findTransfer(tfName);
+        if (!def) return;
+        const auto& tf = def->function;
+        if (!tf.units.empty() && !r.units.empty() && tf.units != r.units)
+            error("SCENARIO_UNITS", ptr,
+                  "transfer function " + quote(tfName) + " is in " + quote(tf.units) + " but " +
+                      r.what + " is in " + quote(r.units));
+        if (!(r.max >= r.min) || !std::isfinite(r.min) || !std::isfinite(r.max)) return;
+        const std::string range = "[" + num(r.min) + ", " + num(r.max) + "]";
+        const std::string domain = "[" + num(tf.domainMin) + ", " + num(tf.domainMax) + "]";
+        if (r.max < tf.domainMin || r.min > tf.domainMax) {
+            error("SCENARIO_DOMAIN", ptr,
+                  r.what + " spans " + range + ", entirely outside the domain " + domain +
+                      " of transfer function " + quote(tfName));
+        } else if (r.min < tf.domainMin || r.max > tf.domainMax) {
+            warning("SCENARIO_DOMAIN", ptr,
+                    r.what + " spans " + range + ", beyond the domain " + domain +
+                        " of transfer function " + quote(tfName) +
+                        "; values outside take the below/above colours");
+        }
+    }
+
+    void sequenceTimes(const std::string& ptr, const io::SequenceInfo& seq) {
+        if (!mS.clock || seq.frameTimes.empty()) return;
+        const double first = seq.frameTimes.front(), last = seq.frameTimes.back();
+        const Clock& c = *mS.clock;
+        const double end = c.range == RangeBehaviour::Unbounded ? HUGE_VAL : c.end;
+        const std::string span = formatIso8601(first) + " .. " + formatIso8601(last);
+        const std::string clock = formatIso8601(c.start) + " .. " +
+                                  (c.range == RangeBehaviour::Unbounded ? std::string("(unbounded)")
+                                                                        : formatIso8601(c.end));
+        if (end < first || c.start > last) {
+            error("SCENARIO_TIME_RANGE", ptr,
+                  "sequence " + quote(seq.name) + " covers " + span + ", which the clock " + clock +
+                      " never reaches");
+        } else if (c.start < first || end > last) {
+            warning("SCENARIO_TIME_RANGE", ptr,
+                    "clock " + clock + " runs beyond sequence " + quote(seq.name) + " (" + span +
+                        "); the nearest frame is held outside it");
+        }
+    }
+
+    void source(const std::string& ptr, const SourceRef& src, bool wantSequence,
+                const std::string& transfer, const std::string& transferPtr,
+                std::optional<LayerKind> kind) {
+        const auto* info = store(src.store);
+        if (!info) return;
+        if (wantSequence || !src.sequence.empty()) {
+            const auto* seq = info->findSequence(src.sequence);
+            if (!seq) {
+                unknown("SCENARIO_UNKNOWN_SEQUENCE", ptr + "/sequence", "sequence", src.sequence,
+                        src.store, info->sequences);
+                return;
+            }
+            sequenceTimes(ptr + "/sequence", *seq);
+            if (!transfer.empty() && !seq->frameMin.empty()) {
+                DataRange r{*std::min_element(seq->frameMin.begin(), seq->frameMin.end()),
+                            *std::max_element(seq->frameMax.begin(), seq->frameMax.end()),
+                            seq->units, "sequence " + quote(seq->name)};
+                transferFits(transferPtr, transfer, r);
+            }
+            return;
+        }
+        if (src.layer.empty()) return;
+        const auto* l = info->findLayer(src.layer);
+        if (!l) {
+            unknown("SCENARIO_UNKNOWN_LAYER", ptr + "/layer", "layer", src.layer, src.store,
+                    info->layers);
+            return;
+        }
+        if (kind == LayerKind::Thematic && l->kind != io::LayerKind::Imagery)
+            error("SCENARIO_LAYER_KIND", ptr + "/layer",
+                  "a thematic layer needs an imagery layer; " + quote(l->name) + " is " +
+                      (l->kind == io::LayerKind::Elevation ? "elevation" : "a sequence"));
+        if (kind == LayerKind::Data && l->kind == io::LayerKind::Imagery)
+            error("SCENARIO_LAYER_KIND", ptr + "/layer",
+                  "a data layer needs scalar values; " + quote(l->name) + " is imagery");
+        if (!transfer.empty() && l->kind != io::LayerKind::Imagery)
+            transferFits(transferPtr, transfer,
+                         DataRange{l->minValue, l->maxValue, l->units, "layer " + quote(l->name)});
+    }
+
+    void layer(const Layer& l) {
+        source(l.pointer + "/source", l.source, l.kind == LayerKind::Sequence, l.transfer,
+               l.pointer + "/transfer", l.kind);
+    }
+
+    void mapping(const ProjectiveMapping& m) {
+        source(m.pointer + "/data", m.data, false, m.transfer, m.pointer + "/transfer",
+               std::nullopt);
+    }
+
+    const Scenario& mS;
+    const StoreLookup& mLookup;
+    Diagnostics mDiags;
+};
+
+}  // namespace
+
+Diagnostics checkMeaning(const Scenario& scenario, const StoreLookup& lookup) {
+    if (!lookup) return {};
+    return Checker(scenario, lookup).run();
+}
+
+}  // namespace kiosk::config

@@ -1,0 +1,288 @@
+#pragma once
+
+#include "config/SourceMap.h"
+#include "runtime/color/TransferFunction.h"
+#include "runtime/core/TimeParse.h"
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+// The typed scenario (docs/scenario-format.md). Plain data: built once by the reader on any
+// thread, then read-only (safe to share between threads as const). Every element keeps the JSON
+// pointer it was read from so later checks (store metadata, hot reload) can point at it.
+namespace kiosk::config {
+
+using Vec2 = std::array<double, 2>;
+using Vec3 = std::array<double, 3>;
+using Mat3 = std::array<double, 9>;   ///< row-major
+using Mat4 = std::array<double, 16>;  ///< row-major
+
+inline constexpr int kScenarioVersion = 1;
+
+/** @brief A store declared under "stores": id -> path (resolved against the declaring file). */
+struct StoreRef {
+    std::string id;
+    std::filesystem::path path;
+    std::string pointer;
+};
+
+/** @brief Which store layer or sequence a layer / mapping reads. */
+struct SourceRef {
+    std::string store;
+    std::string layer;     ///< a raster layer of the store, or empty
+    std::string sequence;  ///< a time-keyed sequence of the store, or empty
+};
+
+struct Terrain {
+    std::string store;
+    std::string elevation = "elevation";
+    double tauGeom = 2.0;  ///< screen-space geometric error threshold, pixels
+    double tauTex = 1.0;   ///< texture error threshold, pixels
+    double verticalExaggeration = 1.0;
+    std::int64_t cacheBytes = 512ll << 20;  ///< CPU tile cache budget
+    std::int64_t gpuBytes = 256ll << 20;    ///< resident texture/mesh budget
+    std::string pointer = "/terrain";
+};
+
+enum class LayerKind { Thematic, Luminance, Topographic, Visibility, Data, Sequence };
+/** @brief How a layer combines with the result of the layers below it (Döllner's operations). */
+enum class OperationType {
+    Opacity,   ///< alpha-over with a constant opacity (the default)
+    Blend,     ///< mix(previous, this, alpha of the referenced visibility layer)
+    Add,       ///< previous + weight * this
+    Modulate,  ///< previous * this
+    Mask,      ///< previous alpha *= this layer's alpha
+    Replace,   ///< this, ignoring what is below
+};
+enum class SequenceInterpolation { Data, None, Arrival };
+
+struct Operation {
+    OperationType type = OperationType::Opacity;
+    double weight = 1.0;     ///< for Add
+    double opacity = 1.0;    ///< for Opacity (and a global factor for the others)
+    std::string visibility;  ///< for Blend: id of a visibility layer
+};
+
+/**
+ * @brief One entry of the ordered layer stack. Layers are applied bottom (index 0) to top; each
+ * operation takes the result of all layers below it (chaining).
+ */
+struct Layer {
+    std::string id;
+    LayerKind kind = LayerKind::Thematic;
+    SourceRef source;
+    std::string transfer;  ///< transfer function name (data, sequence)
+    Operation operation;
+    bool enabled = true;
+    SequenceInterpolation interpolate = SequenceInterpolation::Data;  ///< sequence only
+    std::optional<double> nodataAs;  ///< sequence: nodata counts as this value when blending
+    std::string pointer;             ///< e.g. "/layers/2"
+};
+
+/** @brief A named transfer function and where it came from. */
+struct TransferFunctionDef {
+    enum class Origin { Stops, Classes, Preset, ParaView, Gdal };
+    std::string name;
+    std::string label;  ///< human title for the legend ("Water depth"); may be empty
+    Origin origin = Origin::Stops;
+    std::filesystem::path file;        ///< ParaView / gdal file, resolved
+    bool explicitDomain = false;       ///< the author fixed "domain"
+    color::TransferFunction function;  ///< finalized: sorted, domain set
+    std::string pointer;               ///< "/transferFunctions/depth"
+};
+
+enum class RangeBehaviour { Loop, Clamp, Unbounded };
+
+struct Clock {
+    double start = 0;  ///< UTC epoch seconds
+    double end = 0;
+    double rate = 1.0;  ///< data seconds per wall second; negative plays backwards
+    RangeBehaviour range = RangeBehaviour::Loop;
+    bool paused = false;
+    bool waitForData = true;  ///< hold the clock until every needed tile of a step is resident
+    std::string pointer = "/clock";
+};
+
+enum class LensKind { Highlight, Visibility };
+enum class LensShape { Circle, Ellipse };
+
+/** @brief Lens parameters at a time; absent fields keep the lens's base value. */
+struct LensKey {
+    TimeSpec time;
+    std::optional<Vec2> center;
+    std::optional<Vec2> radii;
+    std::optional<double> rotation;
+    std::string pointer;
+};
+
+struct Lens {
+    std::string id;
+    LensKind kind = LensKind::Highlight;
+    LensShape shape = LensShape::Circle;
+    Vec2 center{0, 0};    ///< map coordinates (store CRS metres)
+    Vec2 radii{0, 0};     ///< metres; equal for a circle
+    double rotation = 0;  ///< degrees, counter-clockwise, ellipse only
+    double softEdge = 0;  ///< metres of smooth transition at the border
+    double raise = 0.25;  ///< highlight: luminance added inside
+    double lower = 0.25;  ///< highlight: luminance removed outside
+    std::string inside;   ///< visibility: layer shown inside
+    std::string outside;  ///< visibility: layer shown outside
+    bool enabled = true;
+    std::vector<LensKey> keys;  ///< sorted by time as written
+    std::string pointer;
+};
+
+enum class BlendFactor {
+    Zero,
+    One,
+    SrcColor,
+    OneMinusSrcColor,
+    DstColor,
+    OneMinusDstColor,
+    SrcAlpha,
+    OneMinusSrcAlpha,
+    DstAlpha,
+    OneMinusDstAlpha,
+};
+
+struct MappingKey {
+    TimeSpec time;
+    std::optional<Vec3> origin, u, v;
+    std::optional<Mat3> textureMatrix;
+    std::optional<Mat4> colorMatrix;
+    std::optional<double> opacity;
+    std::string pointer;
+};
+
+/** @brief A projective mapping (Trapp & Döllner): PM = (O, U, V, M_T, data, LUT, M_C, blend). */
+struct ProjectiveMapping {
+    std::string id;
+    Vec3 origin{0, 0, 0};  ///< store CRS metres
+    Vec3 u{1, 0, 0};       ///< in-plane axis spanning texture s in [0,1]
+    Vec3 v{0, 1, 0};       ///< in-plane axis spanning texture t in [0,1]
+    Mat3 textureMatrix{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    SourceRef data;
+    std::string transfer;  ///< optional: scalar data through a transfer function
+    Mat4 colorMatrix{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    BlendFactor src = BlendFactor::SrcAlpha;
+    BlendFactor dst = BlendFactor::OneMinusSrcAlpha;
+    double opacity = 1.0;
+    bool enabled = true;
+    std::vector<MappingKey> keys;
+    std::string pointer;
+};
+
+struct Viewpoint {
+    Vec3 target{0, 0, 0};  ///< store CRS metres (z above the datum)
+    double heading = 0;    ///< degrees clockwise from north
+    double pitch = -45;    ///< degrees; negative looks down
+    double range = 1000;   ///< metres from target to eye
+    std::string pointer;
+};
+
+struct CameraKey {
+    TimeSpec time;
+    std::string viewpoint;  ///< name, when the key refers to a named viewpoint
+    Viewpoint view;         ///< resolved (copied from the named viewpoint or given inline)
+    std::string pointer;
+};
+
+enum class CameraInterpolation { Smooth, Linear, Step };
+
+struct CameraPath {
+    std::vector<CameraKey> keys;
+    CameraInterpolation interpolation = CameraInterpolation::Smooth;
+    std::string pointer;
+};
+
+struct Camera {
+    std::string viewpoint;  ///< initial named viewpoint (empty: fit the terrain)
+    std::string path;       ///< camera path played with the clock (empty: none)
+    bool interactive = true;
+    double fovY = 45;  ///< degrees
+};
+
+enum class Corner { TopLeft, TopRight, BottomLeft, BottomRight, Top, Bottom };
+
+struct LegendOverlay {
+    bool enabled = false;
+    std::string transfer;
+    Corner position = Corner::BottomRight;
+    std::string title;  ///< empty: the transfer function's label
+};
+struct TimeLabelOverlay {
+    bool enabled = false;
+    std::string format = "%Y-%m-%d %H:%M";  ///< strftime-style
+    std::string timeZone = "UTC";           ///< "UTC" or "+hh:mm" / "-hh:mm"
+    int utcOffsetMinutes = 0;               ///< parsed from timeZone
+    bool showOffset = true;                 ///< append "(T+6 h 40 min)" from the clock start
+    Corner position = Corner::TopRight;
+};
+struct SimpleOverlay {
+    bool enabled = false;
+    Corner position = Corner::TopLeft;
+};
+struct Overlays {
+    LegendOverlay legend;
+    TimeLabelOverlay timeLabel;
+    SimpleOverlay title{false, Corner::TopLeft};
+    SimpleOverlay status{false, Corner::BottomLeft};
+    SimpleOverlay progress{false, Corner::Bottom};
+};
+
+struct LightingKey {
+    TimeSpec time;
+    double sunAzimuth = 315;
+    double sunAltitude = 45;
+    std::string pointer;
+};
+struct Lighting {
+    double sunAzimuth = 315;  ///< degrees clockwise from north
+    double sunAltitude = 45;  ///< degrees above the horizon
+    double ambient = 0.25;
+    std::vector<LightingKey> keys;
+};
+
+/** @brief A whole scenario after includes were merged and every reference resolved. */
+struct Scenario {
+    int version = kScenarioVersion;
+    std::string title;
+    std::string caption;
+    std::map<std::string, StoreRef> stores;
+    Terrain terrain;
+    std::vector<Layer> layers;
+    std::map<std::string, TransferFunctionDef> transferFunctions;
+    std::optional<Clock> clock;
+    std::vector<Lens> lenses;
+    std::vector<ProjectiveMapping> projectiveMappings;
+    std::map<std::string, Viewpoint> viewpoints;
+    std::map<std::string, CameraPath> cameraPaths;
+    Camera camera;
+    Overlays overlays;
+    Lighting lighting;
+
+    /** @brief The scenario file first, then every included or referenced file (hot reload). */
+    std::vector<std::filesystem::path> sourceFiles;
+    /** @brief JSON pointer -> file:line:col of the merged document, for later diagnostics. */
+    SourceMap sourceMap;
+
+    const Layer* findLayer(const std::string& id) const {
+        for (const auto& l : layers)
+            if (l.id == id) return &l;
+        return nullptr;
+    }
+    const TransferFunctionDef* findTransfer(const std::string& name) const {
+        auto it = transferFunctions.find(name);
+        return it == transferFunctions.end() ? nullptr : &it->second;
+    }
+};
+
+const char* layerKindName(LayerKind k) noexcept;
+const char* operationName(OperationType t) noexcept;
+
+}  // namespace kiosk::config

@@ -1,0 +1,153 @@
+#include "runtime/app/ImportCommand.h"
+
+#include "runtime/core/Diagnostics.h"
+#include "runtime/core/ExitCode.h"
+#include "runtime/core/Strings.h"
+#include "runtime/core/TimeParse.h"
+#include "runtime/import/Importer.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+
+namespace kiosk::app {
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: geokiosk import elevation SRC --store STORE [--name NAME] [--crs EPSG:N]\n"
+    "                       [--pixel-size M] [--z-scale F] [--units m|ft]\n"
+    "       geokiosk import imagery SRC --store STORE --name NAME [--jpeg]\n"
+    "       geokiosk import sequence SRC... --store STORE --name NAME [--times TIMES.csv]\n"
+    "                       [--variable VAR] [--start TIME] [--step SECONDS] [--like RASTER]\n"
+    "                       [--wet-threshold M] [--categorical] [--units U]\n"
+    "common: [--quiet] [--threads N]\n";
+
+int usage(const std::string& message, const std::string& hint = {}) {
+    Diagnostic d;
+    d.code = "CLI_USAGE";
+    d.where = "import";
+    d.message = message;
+    d.hint = hint;
+    std::fprintf(stderr, "%s\n%s", d.format().c_str(), kUsage);
+    return kExitUsage;
+}
+
+std::optional<double> number(const std::string& s) {
+    char* end = nullptr;
+    const double v = std::strtod(s.c_str(), &end);
+    if (s.empty() || !end || *end != '\0') return std::nullopt;
+    return v;
+}
+
+}  // namespace
+
+int runImportCommand(const std::vector<std::string>& args) {
+    if (args.empty() || args[0] == "--help" || args[0] == "-h") {
+        std::fputs(kUsage, args.empty() ? stderr : stdout);
+        return args.empty() ? kExitUsage : kExitOk;
+    }
+    const std::string kind = args[0];
+    const std::vector<std::string> kinds = {"elevation", "imagery", "sequence"};
+    if (kind != "elevation" && kind != "imagery" && kind != "sequence") {
+        auto m = closestMatch(kind, kinds);
+        return usage("unknown import kind '" + kind + "'",
+                     m ? "did you mean '" + *m + "'?" : "elevation, imagery or sequence");
+    }
+    import::ImportOptions o;
+    std::vector<std::string> sources;
+    const std::vector<std::string> valued = {
+        "--store", "--name",  "--crs",      "--pixel-size",    "--z-scale",
+        "--units", "--times", "--variable", "--wet-threshold", "--start",
+        "--step",  "--like",  "--threads"};
+    const std::vector<std::string> flags = {"--categorical", "--jpeg", "--quiet"};
+    for (std::size_t i = 1; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a.rfind("--", 0) != 0) {
+            sources.push_back(a);
+            continue;
+        }
+        if (a == "--categorical") {
+            o.categorical = true;
+            continue;
+        }
+        if (a == "--jpeg") {
+            o.jpeg = true;
+            continue;
+        }
+        if (a == "--quiet") {
+            o.quiet = true;
+            continue;
+        }
+        if (std::find(valued.begin(), valued.end(), a) == valued.end()) {
+            std::vector<std::string> all = valued;
+            all.insert(all.end(), flags.begin(), flags.end());
+            auto m = closestMatch(a, all);
+            return usage("unknown option '" + a + "'", m ? "did you mean '" + *m + "'?" : "");
+        }
+        if (i + 1 >= args.size()) return usage("option " + a + " needs a value");
+        const std::string v = args[++i];
+        if (a == "--store") {
+            o.store = v;
+        } else if (a == "--name") {
+            o.name = v;
+        } else if (a == "--crs") {
+            o.crs = v;
+        } else if (a == "--units") {
+            o.units = v;
+        } else if (a == "--times") {
+            o.timesCsv = v;
+        } else if (a == "--variable") {
+            o.variable = v;
+        } else if (a == "--like") {
+            o.gridLike = v;
+        } else if (a == "--start") {
+            auto t = parseIso8601(v);
+            if (!t)
+                return usage("--start needs an ISO 8601 UTC time, got '" + v + "'",
+                             "e.g. 2026-03-14T06:40:00Z");
+            o.start = *t;
+        } else {
+            auto n = number(v);
+            if (!n) return usage("option " + a + " needs a number, got '" + v + "'");
+            if (a == "--pixel-size") {
+                if (!(*n > 0)) return usage("--pixel-size must be positive");
+                o.pixelSize = *n;
+            } else if (a == "--z-scale") {
+                if (*n == 0) return usage("--z-scale must not be 0");
+                o.zScale = *n;
+            } else if (a == "--wet-threshold") {
+                o.wetThreshold = *n;
+            } else if (a == "--step") {
+                if (!(*n > 0)) return usage("--step must be positive");
+                o.step = *n;
+            } else if (a == "--threads") {
+                o.threads = std::max(1, int(*n));
+            }
+        }
+    }
+    if (o.store.empty()) return usage("--store STORE is required");
+    if (sources.empty()) return usage("no source file given");
+    if (kind != "sequence" && sources.size() > 1)
+        return usage("import " + kind + " takes one source, got " + std::to_string(sources.size()));
+    if (kind == "elevation" && o.units && *o.units != "m" && *o.units != "ft")
+        return usage("--units must be m or ft for elevation, got '" + *o.units + "'");
+    if (kind != "elevation" && o.name.empty()) return usage("import " + kind + " needs --name");
+
+    Diagnostics d;
+    if (kind == "elevation")
+        d = import::importElevation(sources[0], o);
+    else if (kind == "imagery")
+        d = import::importImagery(sources[0], o);
+    else
+        d = import::importSequence(sources, o);
+    for (const auto& item : d.items()) std::fprintf(stderr, "%s\n", item.format().c_str());
+    if (d.hasErrors()) return kExitBadInput;
+    if (!o.quiet)
+        std::fprintf(stderr, "geokiosk: imported %s into %s\n", kind.c_str(),
+                     o.store.string().c_str());
+    return kExitOk;
+}
+
+}  // namespace kiosk::app

@@ -1,0 +1,132 @@
+#include "runtime/app/InfoCommand.h"
+
+#include "runtime/core/ExitCode.h"
+#include "runtime/core/TimeParse.h"
+#include "runtime/io/StoreReader.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+
+namespace kiosk::app {
+
+namespace {
+
+const char* kindName(io::LayerKind k) {
+    switch (k) {
+        case io::LayerKind::Elevation:
+            return "elevation";
+        case io::LayerKind::Imagery:
+            return "imagery";
+        case io::LayerKind::Sequence:
+            return "sequence_frame";
+    }
+    return "?";
+}
+
+}  // namespace
+
+int runInfoCommand(const std::vector<std::string>& args) {
+    std::string path;
+    bool json = false;
+    for (const auto& a : args) {
+        if (a == "--json") {
+            json = true;
+        } else if (a.rfind("--", 0) == 0 || !path.empty()) {
+            std::fprintf(stderr,
+                         "geokiosk: info: unexpected argument '%s' [CLI_USAGE]\n"
+                         "usage: geokiosk info STORE [--json]\n",
+                         a.c_str());
+            return kExitUsage;
+        } else {
+            path = a;
+        }
+    }
+    if (path.empty()) {
+        std::fprintf(stderr, "usage: geokiosk info STORE [--json]\n");
+        return kExitUsage;
+    }
+    auto reader = io::StoreReader::open(path);
+    for (const auto& d : reader.diagnostics.items())
+        std::fprintf(stderr, "%s\n", d.format().c_str());
+    if (!reader) return kExitBadInput;
+    const io::StoreInfo& info = (*reader)->info();
+    const io::TileGrid& g = info.grid;
+    std::int64_t frameTiles = 0;
+    if (json) {
+        nlohmann::json j;
+        j["path"] = info.path;
+        j["size_bytes"] = info.sizeBytes;
+        j["crs"] = {{"srs_id", g.srsId}, {"name", g.crsName}};
+        j["extent"] = {g.minX, g.minY, g.maxX, g.maxY};
+        j["levels"] = int(g.levels.size());
+        j["tile_size"] = g.levels.empty() ? 0 : g.levels.back().tileWidth;
+        j["finest_pixel_size"] = g.levels.empty() ? 0.0 : g.levels.back().pixelXSize;
+        j["layers"] = nlohmann::json::array();
+        for (const auto& l : info.layers) {
+            if (l.kind == io::LayerKind::Sequence) {
+                frameTiles += l.tileCount;
+                continue;
+            }
+            nlohmann::json lj = {{"name", l.name},
+                                 {"kind", kindName(l.kind)},
+                                 {"units", l.units},
+                                 {"min", l.minValue},
+                                 {"max", l.maxValue},
+                                 {"levels", l.levels},
+                                 {"tiles", l.tileCount},
+                                 {"data_extent", {l.dataMinX, l.dataMinY, l.dataMaxX, l.dataMaxY}}};
+            if (l.nodata) lj["nodata"] = *l.nodata;
+            j["layers"].push_back(lj);
+        }
+        j["sequences"] = nlohmann::json::array();
+        for (const auto& s : info.sequences) {
+            nlohmann::json sj = {{"name", s.name},
+                                 {"units", s.units},
+                                 {"variable", s.variable},
+                                 {"categorical", s.categorical},
+                                 {"frames", s.frameTimes.size()},
+                                 {"levels", s.levels}};
+            if (!s.frameTimes.empty()) {
+                sj["first_time"] = formatIso8601(s.frameTimes.front());
+                sj["last_time"] = formatIso8601(s.frameTimes.back());
+                double lo = s.frameMin.front(), hi = s.frameMax.front();
+                for (std::size_t i = 0; i < s.frameMin.size(); ++i) {
+                    lo = std::min(lo, s.frameMin[i]);
+                    hi = std::max(hi, s.frameMax[i]);
+                }
+                sj["min"] = lo;
+                sj["max"] = hi;
+            }
+            j["sequences"].push_back(sj);
+        }
+        j["sequence_tiles"] = frameTiles;
+        std::printf("%s\n", j.dump(2).c_str());
+        return kExitOk;
+    }
+    std::printf("store:   %s (%.1f MB)\n", info.path.c_str(), double(info.sizeBytes) / 1e6);
+    std::printf("crs:     %s (srs_id %d)\n", g.crsName.c_str(), g.srsId);
+    std::printf("extent:  %.3f %.3f %.3f %.3f\n", g.minX, g.minY, g.maxX, g.maxY);
+    if (!g.levels.empty())
+        std::printf("grid:    %zu levels, %dx%d tiles, finest pixel %.4g\n", g.levels.size(),
+                    g.levels.back().tileWidth, g.levels.back().tileHeight,
+                    g.levels.back().pixelXSize);
+    for (const auto& l : info.layers) {
+        if (l.kind == io::LayerKind::Sequence) continue;
+        std::printf("layer:   %s [%s] %lld tiles, %d levels, values %.3f..%.3f %s\n",
+                    l.name.c_str(), kindName(l.kind), (long long)l.tileCount, l.levels, l.minValue,
+                    l.maxValue, l.units.c_str());
+    }
+    for (const auto& s : info.sequences) {
+        std::printf("sequence: %s%s %zu frames", s.name.c_str(),
+                    s.categorical ? " [categorical]" : "", s.frameTimes.size());
+        if (!s.frameTimes.empty())
+            std::printf(", %s .. %s", formatIso8601(s.frameTimes.front()).c_str(),
+                        formatIso8601(s.frameTimes.back()).c_str());
+        std::printf(" (%s)\n", s.units.c_str());
+    }
+    return kExitOk;
+}
+
+}  // namespace kiosk::app

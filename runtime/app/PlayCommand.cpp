@@ -1,0 +1,205 @@
+#include "runtime/app/PlayCommand.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <thread>
+
+#include "runtime/anim/ScenarioClock.h"
+#include "runtime/app/Args.h"
+#include "runtime/app/Session.h"
+#include "runtime/app/Signals.h"
+#include "runtime/core/Clock.h"
+#include "runtime/core/ExitCode.h"
+#include "runtime/core/Log.h"
+#include "runtime/core/Strings.h"
+#include "runtime/gl/Context.h"
+#include "runtime/gl/RenderTarget.h"
+#include "runtime/platform/Display.h"
+
+namespace kiosk::app {
+namespace {
+
+constexpr const char* kTag = "play";
+/** Scenario files are polled this often; a valid edit shows within a second. */
+constexpr double kReloadPollSeconds = 0.5;
+
+int usage(const std::string& message) {
+    std::fprintf(stderr,
+                 "geokiosk play: %s\nusage: geokiosk play SCENARIO [--display "
+                 "auto|kms|x11|wayland|headless] [--size WxH] [--windowed] [--max-fps N] "
+                 "[--frames N] [--connector NAME] [--drm-device PATH]\n",
+                 message.c_str());
+    return kExitUsage;
+}
+
+void printDiagnostics(const Diagnostics& d) {
+    for (const auto& item : d.items()) std::fprintf(stderr, "%s\n", item.format().c_str());
+}
+
+/** Modification stamps of the scenario and everything it includes. */
+std::vector<std::filesystem::file_time_type> stamps(const std::vector<std::filesystem::path>& files) {
+    std::vector<std::filesystem::file_time_type> out;
+    for (const auto& f : files) {
+        std::error_code ec;
+        out.push_back(std::filesystem::last_write_time(f, ec));
+    }
+    return out;
+}
+
+anim::ScenarioClock makeClock(const Session& s) {
+    anim::ClockSettings cs;
+    cs.start = s.startTime();
+    cs.end = s.endTime();
+    if (const auto& c = s.scenario().clock) {
+        cs.rate = c->rate;
+        cs.range = c->range == config::RangeBehaviour::Loop    ? anim::RangeMode::Loop
+                   : c->range == config::RangeBehaviour::Clamp ? anim::RangeMode::Clamp
+                                                               : anim::RangeMode::Unbounded;
+        cs.waitForData = c->waitForData;
+        cs.startPaused = c->paused;
+    }
+    auto clock = anim::ScenarioClock::create(cs);
+    return clock ? *clock.value : anim::ScenarioClock();
+}
+
+}  // namespace
+
+int runPlayCommand(const std::vector<std::string>& argv) {
+    Args args("play", {"display", "size", "max-fps", "frames", "connector", "drm-device"},
+              {"windowed"});
+    if (!args.parse(argv)) return usage(args.error());
+    if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
+    const std::filesystem::path scenarioPath = args.positionals()[0];
+    platform::DisplayOptions dopts;
+    if (auto d = args.value("display")) {
+        auto kind = platform::parseDisplayKind(*d);
+        if (!kind) {
+            std::string msg = "--display wants auto|kms|x11|wayland|headless, got '" + *d + "'";
+            if (auto m = closestMatch(*d, {"auto", "kms", "x11", "wayland", "headless"}))
+                msg += " (did you mean '" + *m + "'?)";
+            return usage(msg);
+        }
+        dopts.kind = *kind;
+    }
+    if (auto size = args.value("size")) {
+        auto wh = parseSize(*size);
+        if (!wh) return usage("--size wants WIDTHxHEIGHT, got '" + *size + "'");
+        dopts.width = wh->first;
+        dopts.height = wh->second;
+    }
+    dopts.windowed = args.flag("windowed");
+    dopts.connector = args.value("connector").value_or("");
+    dopts.drmDevice = args.value("drm-device").value_or("");
+    double maxFps = 0;
+    if (auto f = args.value("max-fps")) {
+        char* end = nullptr;
+        maxFps = std::strtod(f->c_str(), &end);
+        if (end == f->c_str() || *end || !(maxFps > 0)) return usage("--max-fps wants a positive number");
+    }
+    long frameLimit = -1;
+    if (auto f = args.value("frames")) {
+        char* end = nullptr;
+        frameLimit = std::strtol(f->c_str(), &end, 10);
+        if (end == f->c_str() || *end || frameLimit <= 0) return usage("--frames wants a positive integer");
+    }
+    std::error_code ec;
+    if (!std::filesystem::exists(scenarioPath, ec)) {
+        std::fprintf(stderr, "%s: scenario file not found\n", scenarioPath.c_str());
+        return kExitBadInput;
+    }
+
+    auto display = platform::createDisplay(dopts);
+    if (!display) {
+        printDiagnostics(display.diagnostics);
+        return kExitCannotRun;
+    }
+    platform::Display& dpy = **display;
+    auto caps = gl::initContext();
+    if (!caps) {
+        printDiagnostics(caps.diagnostics);
+        return kExitCannotRun;
+    }
+    KIOSK_LOG_INFO(kTag, "%s, %s", dpy.describe().c_str(), caps->renderer.c_str());
+    auto opened = Session::open(scenarioPath, *caps);
+    if (!opened) {
+        printDiagnostics(opened.diagnostics);
+        return kExitBadInput;
+    }
+    std::unique_ptr<Session> session = std::move(*opened.value);
+    std::optional<gl::RenderTarget> offscreen;
+    if (!dpy.hasSurface()) {
+        auto rt = gl::RenderTarget::create(dpy.width(), dpy.height());
+        if (!rt) {
+            printDiagnostics(rt.diagnostics);
+            return kExitCannotRun;
+        }
+        offscreen.emplace(std::move(*rt.value));
+    }
+
+    installStopSignals();
+    RealClock wall;
+    anim::ScenarioClock clock = makeClock(*session);
+    auto watched = session->scenario().sourceFiles;
+    auto watchedStamps = stamps(watched);
+    double lastPoll = wall.now(), last = wall.now();
+    platform::InputState input;
+    for (long frame = 0; frameLimit < 0 || frame < frameLimit; ++frame) {
+        if (stopRequested()) break;
+        dpy.pollInput(input);
+        if (input.quitRequested) break;
+        const double now = wall.now();
+        const double dt = now - last;
+        last = now;
+
+        if (now - lastPoll >= kReloadPollSeconds) {
+            lastPoll = now;
+            auto current = stamps(watched);
+            if (current != watchedStamps) {
+                watchedStamps = current;
+                auto next = Session::open(scenarioPath, *caps);
+                if (next) {
+                    session = std::move(*next.value);
+                    clock = makeClock(*session);
+                    watched = session->scenario().sourceFiles;
+                    watchedStamps = stamps(watched);
+                    KIOSK_LOG_INFO(kTag, "%s: reloaded", scenarioPath.c_str());
+                } else {
+                    // Keep the last good scenario on screen; say exactly why the edit was refused.
+                    for (const auto& d : next.diagnostics.items())
+                        KIOSK_LOG_ERROR(kTag, "edit rejected, keeping the previous scenario: %s",
+                                        d.format().c_str());
+                }
+            }
+        }
+
+        const bool ready = !session->terrain().frameInfo().holdingSequence;
+        const double t = clock.advance(dt, ready).time;
+        auto vp = session->viewpointAt(t, "");
+        const int w = dpy.width(), h = dpy.height();
+        const math::Camera cam = vp ? makeCamera(*vp, session->terrain().bounds(), w, h,
+                                                 session->scenario().camera.fovY)
+                                    : makeCamera(session->terrain().overviewViewpoint(),
+                                                 session->terrain().bounds(), w, h, 45.0);
+        if (offscreen)
+            offscreen->bind();
+        else
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        session->drawFrame(cam, t, w, h);
+        if (!dpy.swapBuffers()) {
+            KIOSK_LOG_ERROR(kTag, "presenting the frame failed; stopping");
+            return kExitCannotRun;
+        }
+        if (offscreen) glFinish();
+        if (maxFps > 0) {
+            const double spent = wall.now() - now;
+            const double wait = 1.0 / maxFps - spent;
+            if (wait > 0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
+        }
+    }
+    KIOSK_LOG_INFO(kTag, "stopped cleanly");
+    return kExitOk;
+}
+
+}  // namespace kiosk::app

@@ -1,0 +1,178 @@
+#include "runtime/app/RenderCommand.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <thread>
+
+#include "runtime/app/Args.h"
+#include "runtime/app/FrameStats.h"
+#include "runtime/app/ImageOutput.h"
+#include "runtime/app/Session.h"
+#include "runtime/core/Clock.h"
+#include "runtime/core/ExitCode.h"
+#include "runtime/core/Log.h"
+#include "runtime/core/Strings.h"
+#include "runtime/core/TimeParse.h"
+#include "runtime/gl/Context.h"
+#include "runtime/gl/RenderTarget.h"
+#include "runtime/platform/Display.h"
+
+namespace kiosk::app {
+namespace {
+
+constexpr const char* kTag = "render";
+/** How long one frame may wait for its tiles before it is drawn with what is resident. */
+constexpr double kSettleTimeoutSeconds = 120.0;
+
+int usage(const std::string& message) {
+    std::fprintf(stderr, "geokiosk render: %s\nusage: geokiosk render SCENARIO --out OUT [--time T | "
+                         "--from T0 --to T1 --fps N] [--size WxH] [--viewpoint NAME] "
+                         "[--stats STATS.json]\n",
+                 message.c_str());
+    return kExitUsage;
+}
+
+void printDiagnostics(const Diagnostics& d) {
+    for (const auto& item : d.items()) std::fprintf(stderr, "%s\n", item.format().c_str());
+}
+
+}  // namespace
+
+int runRenderCommand(const std::vector<std::string>& argv) {
+    Args args("render", {"out", "time", "from", "to", "fps", "size", "viewpoint", "stats"}, {});
+    if (!args.parse(argv)) return usage(args.error());
+    if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
+    const std::filesystem::path scenarioPath = args.positionals()[0];
+    const auto out = args.value("out");
+    if (!out) return usage("--out is required");
+    const bool toDir = out->back() == '/' || std::filesystem::is_directory(*out);
+    const std::string ext = std::filesystem::path(*out).extension().string();
+    if (!toDir && ext == ".mp4")
+        return usage("video export (.mp4) is not available in this version; write frames to a dir/");
+    if (!toDir && ext != ".png") return usage("--out must end in .png (one frame) or / (a folder)");
+    const bool range = args.value("from") || args.value("to");
+    if (range && args.value("time")) return usage("--time and --from/--to are exclusive");
+    if (range && (!args.value("from") || !args.value("to")))
+        return usage("--from and --to go together");
+    if (range && !toDir) return usage("--from/--to write many frames: --out must be a folder/");
+    int width = 1280, height = 720;
+    if (auto size = args.value("size")) {
+        auto wh = parseSize(*size);
+        if (!wh) return usage("--size wants WIDTHxHEIGHT, got '" + *size + "'");
+        width = wh->first;
+        height = wh->second;
+    }
+    double fps = 1.0;
+    if (auto f = args.value("fps")) {
+        char* end = nullptr;
+        fps = std::strtod(f->c_str(), &end);
+        if (end == f->c_str() || *end || !(fps > 0) || fps > 1000) return usage("--fps wants a positive number");
+    }
+    std::optional<TimeSpec> at, from, to;
+    for (auto [name, slot] : {std::pair{"time", &at}, std::pair{"from", &from}, std::pair{"to", &to}}) {
+        if (auto v = args.value(name)) {
+            *slot = parseTimeSpec(*v);
+            if (!*slot)
+                return usage("--" + std::string(name) + " wants an ISO 8601 UTC time or +offset, got '" + *v + "'");
+        }
+    }
+    std::error_code ec;
+    if (!std::filesystem::exists(scenarioPath, ec)) {
+        std::fprintf(stderr, "%s: scenario file not found\n", scenarioPath.c_str());
+        return kExitBadInput;
+    }
+
+    platform::DisplayOptions dopts;
+    dopts.kind = platform::DisplayKind::Headless;
+    dopts.width = width;
+    dopts.height = height;
+    auto display = platform::createDisplay(dopts);
+    if (!display) {
+        printDiagnostics(display.diagnostics);
+        return kExitCannotRun;
+    }
+    auto caps = gl::initContext();
+    if (!caps) {
+        printDiagnostics(caps.diagnostics);
+        return kExitCannotRun;
+    }
+    auto session = Session::open(scenarioPath, *caps);
+    if (!session) {
+        printDiagnostics(session.diagnostics);
+        return kExitBadInput;
+    }
+    auto target = gl::RenderTarget::create(width, height);
+    if (!target) {
+        printDiagnostics(target.diagnostics);
+        return kExitCannotRun;
+    }
+    Session& s = **session;
+    std::vector<double> times;
+    if (range) {
+        const double t0 = from->resolve(s.startTime()), t1 = to->resolve(s.startTime());
+        if (t1 < t0) return usage("--to is before --from");
+        const auto n = static_cast<long>(std::floor((t1 - t0) * fps + 1e-9));
+        for (long i = 0; i <= n; ++i) times.push_back(t0 + double(i) / fps);
+    } else {
+        times.push_back(at ? at->resolve(s.startTime()) : s.startTime());
+    }
+    if (toDir) std::filesystem::create_directories(*out, ec);
+
+    FrameStats stats(times.size());
+    RealClock clock;
+    const std::string viewpoint = args.value("viewpoint").value_or("");
+    for (std::size_t i = 0; i < times.size(); ++i) {
+        auto vp = s.viewpointAt(times[i], viewpoint);
+        if (!vp) {
+            printDiagnostics(vp.diagnostics);
+            return kExitBadInput;
+        }
+        const math::Camera cam = makeCamera(*vp, s.terrain().bounds(), width, height,
+                                            s.scenario().camera.fovY);
+        target->bind();
+        // Deterministic output: redraw until every tile of this view (and both frames of each
+        // sequence pair) is resident, then keep that last, complete frame.
+        const double waitStart = clock.now();
+        for (s.prepare(cam, times[i]); !s.terrain().settled(); s.prepare(cam, times[i])) {
+            if (clock.now() - waitStart > kSettleTimeoutSeconds) {
+                KIOSK_LOG_WARN(kTag, "frame %zu: tiles still missing after %.0f s; drawing what is resident",
+                               i + 1, kSettleTimeoutSeconds);
+                break;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+        const double t0 = clock.now();
+        FrameRecord rec = s.drawFrame(cam, times[i], width, height);
+        glFinish();
+        rec.frameMs = (clock.now() - t0) * 1000.0;
+        stats.add(rec);
+        const gl::Image img = target->readColor();
+        char name[32];
+        std::snprintf(name, sizeof name, "%06zu.png", i + 1);
+        const std::filesystem::path file = toDir ? std::filesystem::path(*out) / name
+                                                 : std::filesystem::path(*out);
+        Diagnostics d;
+        if (!writePng(file, img, d)) {
+            printDiagnostics(d);
+            return kExitBadInput;
+        }
+    }
+    if (auto statsPath = args.value("stats")) {
+        Diagnostics d;
+        if (!stats.write(*statsPath, d)) {
+            printDiagnostics(d);
+            return kExitBadInput;
+        }
+    }
+    std::fprintf(stderr, "render: wrote %zu frame%s to %s\n", times.size(), times.size() == 1 ? "" : "s",
+                 out->c_str());
+    for (const auto& st : s.terrain().layerStatus())
+        if (st.state != scene::LayerState::Ready)
+            std::fprintf(stderr, "render: layer %s %s: %s\n", st.id.c_str(),
+                         scene::layerStateName(st.state), st.message.c_str());
+    return kExitOk;
+}
+
+}  // namespace kiosk::app

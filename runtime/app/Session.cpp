@@ -1,0 +1,267 @@
+#include "runtime/app/Session.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "config/MeaningCheck.h"
+#include "config/ScenarioReader.h"
+#include "runtime/color/Legend.h"
+#include "runtime/core/Log.h"
+#include "runtime/core/Strings.h"
+#include "runtime/io/StoreReader.h"
+
+namespace kiosk::app {
+namespace {
+
+constexpr const char* kTag = "app::Session";
+const glm::vec4 kPanel(0.05f, 0.07f, 0.1f, 0.72f);
+const glm::vec4 kText(1.0f, 1.0f, 1.0f, 1.0f);
+const glm::vec4 kDim(0.8f, 0.84f, 0.9f, 1.0f);
+const glm::vec4 kWarn(1.0f, 0.75f, 0.3f, 1.0f);
+
+math::Viewpoint toViewpoint(const config::Viewpoint& v) {
+    return {glm::dvec3(v.target[0], v.target[1], v.target[2]), v.heading, v.pitch, v.range};
+}
+
+
+}  // namespace
+
+math::Camera makeCamera(const math::Viewpoint& vp, const math::Aabb& bounds, int width, int height,
+                        double fovY) {
+    math::Camera cam = math::Camera::fromViewpoint(vp, width, height, fovY);
+    // Include the skirts' depth below the data minimum.
+    glm::dvec3 lo = bounds.min, hi = bounds.max;
+    lo.z -= std::max(100.0, (hi.z - lo.z) * 0.1);
+    cam.fitClipPlanes(lo, hi);
+    return cam;
+}
+
+Result<std::unique_ptr<Session>> Session::open(const std::filesystem::path& scenarioPath,
+                                               const gl::Caps& caps) {
+    return open(scenarioPath, caps, nullptr);
+}
+
+Result<std::unique_ptr<Session>> Session::open(
+    const std::filesystem::path& scenarioPath, const gl::Caps& caps,
+    const std::function<void(config::Scenario&)>& adjust) {
+    auto scenario = config::readScenario(scenarioPath);
+    if (!scenario) return scenario.diagnostics;
+    std::unique_ptr<Session> s(new Session());
+    s->mScenario = std::make_unique<config::Scenario>(std::move(*scenario.value));
+    Diagnostics diags = scenario.diagnostics;  // warnings
+
+    // Meaning checks need every store's metadata.
+    std::map<std::string, std::unique_ptr<io::StoreReader>> readers;
+    for (const auto& [id, ref] : s->mScenario->stores) {
+        auto r = io::StoreReader::open(ref.path);
+        if (!r) {
+            diags.append(r.diagnostics);
+            return diags;
+        }
+        readers[id] = std::move(*r.value);
+    }
+    Diagnostics meaning = config::checkMeaning(*s->mScenario, [&](const std::string& id) {
+        auto it = readers.find(id);
+        return it == readers.end() ? nullptr : &it->second->info();
+    });
+    diags.append(meaning);
+    if (diags.hasErrors()) return diags;
+    if (adjust) adjust(*s->mScenario);
+    for (const auto& d : diags.items()) KIOSK_LOG_WARN(kTag, "%s", d.format().c_str());
+
+    auto scene = scene::TerrainScene::create(*s->mScenario, caps);
+    if (!scene) return scene.diagnostics;
+    s->mScene = std::move(*scene.value);
+
+    auto overlay = render::OverlayRenderer::create(render::FontAtlas::defaultFontPath(), 18);
+    if (overlay) {
+        s->mOverlay.emplace(std::move(*overlay.value));
+    } else {
+        // No text is no reason to leave the display dark.
+        KIOSK_LOG_WARN(kTag, "overlays disabled: %s", overlay.diagnostics.format().c_str());
+    }
+
+    const auto& sc = *s->mScenario;
+    if (sc.clock) {
+        s->mStart = sc.clock->start;
+        s->mEnd = sc.clock->end;
+    } else if (auto times = s->mScene->sequenceKeyTimes(); !times.empty()) {
+        s->mStart = times.front();
+        s->mEnd = times.back();
+    }
+    auto tz = anim::parseTimeZone(sc.overlays.timeLabel.timeZone);
+    if (tz) s->mZone = *tz;
+    if (!sc.camera.path.empty()) {
+        auto it = sc.cameraPaths.find(sc.camera.path);
+        if (it != sc.cameraPaths.end()) {
+            std::vector<anim::CameraKey> keys;
+            for (const auto& k : it->second.keys)
+                keys.push_back({k.time.resolve(s->mStart), toViewpoint(k.view)});
+            auto path = anim::CameraPath::create(std::move(keys), sc.sourceFiles.front().string(),
+                                                 it->second.pointer);
+            if (path)
+                s->mPath = std::move(*path.value);
+            else
+                for (const auto& d : path.diagnostics.items())
+                    KIOSK_LOG_WARN(kTag, "%s", d.format().c_str());
+        }
+    }
+    return s;
+}
+
+Result<math::Viewpoint> Session::viewpointAt(double time, const std::string& viewpoint) const {
+    const auto& sc = *mScenario;
+    if (!viewpoint.empty()) {
+        auto it = sc.viewpoints.find(viewpoint);
+        if (it == sc.viewpoints.end()) {
+            Diagnostics d;
+            std::vector<std::string> names;
+            for (const auto& [n, v] : sc.viewpoints) names.push_back(n);
+            auto& e = d.error("SCENARIO_UNKNOWN_VIEWPOINT", sc.sourceFiles.front().string(),
+                              "/viewpoints", "no viewpoint named \"" + viewpoint + "\"");
+            if (auto m = closestMatch(viewpoint, names)) e.hint = "did you mean \"" + *m + "\"?";
+            return d;
+        }
+        return toViewpoint(it->second);
+    }
+    if (!mPath.empty()) return mPath.sample(time);
+    if (!sc.camera.viewpoint.empty()) {
+        auto it = sc.viewpoints.find(sc.camera.viewpoint);
+        if (it != sc.viewpoints.end()) return toViewpoint(it->second);
+    }
+    return mScene->overviewViewpoint();
+}
+
+FrameRecord Session::drawFrame(const math::Camera& camera, double time, int width, int height) {
+    const auto& sc = *mScenario;
+    glViewport(0, 0, width, height);
+    glClearColor(0.62f, 0.71f, 0.80f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    mScene->update(camera, time);
+
+    render::TerrainStyle style;
+    double az = sc.lighting.sunAzimuth, alt = sc.lighting.sunAltitude;
+    if (!sc.lighting.keys.empty()) {
+        // Piecewise-linear sun between keys (a moving sun over the scenario's clock).
+        const auto& keys = sc.lighting.keys;
+        std::size_t i = 0;
+        while (i + 1 < keys.size() && keys[i + 1].time.resolve(mStart) <= time) ++i;
+        az = keys[i].sunAzimuth;
+        alt = keys[i].sunAltitude;
+        if (i + 1 < keys.size()) {
+            const double t0 = keys[i].time.resolve(mStart), t1 = keys[i + 1].time.resolve(mStart);
+            const double a = t1 > t0 ? std::clamp((time - t0) / (t1 - t0), 0.0, 1.0) : 0.0;
+            az += a * (keys[i + 1].sunAzimuth - az);
+            alt += a * (keys[i + 1].sunAltitude - alt);
+        }
+    }
+    style.lightDir = render::sunDirection(az, alt);
+    style.ambient = float(sc.lighting.ambient);
+    style.verticalScale = float(sc.terrain.verticalExaggeration);
+    style.elevationLutWeight = 0.0f;
+    style.baseColor = glm::vec4(0.78f, 0.78f, 0.76f, 1.0f);
+    for (const auto& l : sc.layers)
+        if (l.enabled && l.kind == config::LayerKind::Topographic) style.geometryLighting = 0.0f;
+    mScene->draw(camera, style);
+    drawOverlays(time, width, height);
+
+    const auto& f = mScene->frameInfo();
+    FrameRecord r;
+    r.tilesDrawn = f.tilesDrawn;
+    r.triangles = f.triangles;
+    r.tilesFromAncestor = f.tilesFromAncestor;
+    r.sequenceTilesMissing = f.sequenceTilesMissing;
+    r.residentBytes = f.residentBytes;
+    r.dataTime = time;
+    return r;
+}
+
+void Session::drawOverlays(double time, int width, int height) {
+    if (!mOverlay) return;
+    auto& o = *mOverlay;
+    const auto& sc = *mScenario;
+    const float line = float(o.font().lineHeight());
+    o.begin(width, height);
+    if (!sc.title.empty() || !sc.caption.empty()) {
+        const float w = std::max(o.measure(sc.title), o.measure(sc.caption)) + 24.0f;
+        const float h = (sc.caption.empty() ? 1.0f : 2.0f) * line + 16.0f;
+        o.rect(12, 12, w, h, kPanel);
+        o.text(24, 12 + 8 + float(o.font().ascent()), sc.title, kText);
+        if (!sc.caption.empty()) o.text(24, 12 + 8 + line + float(o.font().ascent()), sc.caption, kDim);
+    }
+    if (sc.overlays.timeLabel.enabled && mEnd > mStart) {
+        char buf[128];
+        anim::formatTimeLabel(buf, sizeof buf, time, mStart, sc.overlays.timeLabel.format, mZone);
+        std::string label = buf;
+        if (sc.overlays.timeLabel.showOffset && label.find("T+") == std::string::npos &&
+            label.find("T-") == std::string::npos)
+            label += "  (" + anim::formatElapsed(time - mStart) + ")";
+        const float w = o.measure(label) + 24.0f;
+        o.rect(float(width) - w - 12, 12, w, line + 16, kPanel);
+        o.text(float(width) - w, 12 + 8 + float(o.font().ascent()), label, kText);
+        if (sc.overlays.progress.enabled) {
+            const float frac = float(std::clamp((time - mStart) / (mEnd - mStart), 0.0, 1.0));
+            o.rect(12, float(height) - 10, float(width) - 24, 4, glm::vec4(1, 1, 1, 0.3f));
+            o.rect(12, float(height) - 10, (float(width) - 24) * frac, 4, kText);
+        }
+    }
+    if (sc.overlays.legend.enabled) drawLegend(sc.overlays.legend, width, height);
+    // Layer problems are always shown: an operator must see why a layer is missing.
+    float y = float(height) - 24;
+    for (const auto& st : mScene->layerStatus()) {
+        if (st.state == scene::LayerState::Ready && !sc.overlays.status.enabled) continue;
+        std::string text = st.id + ": " + scene::layerStateName(st.state);
+        if (!st.message.empty()) text += " - " + st.message;
+        if (text.size() > 140) text = text.substr(0, 137) + "...";
+        const float w = o.measure(text) + 16;
+        o.rect(12, y - line, w, line + 6, kPanel);
+        o.text(20, y - 4, text, st.state == scene::LayerState::Ready ? kDim : kWarn);
+        y -= line + 8;
+    }
+    o.end();
+}
+
+void Session::drawLegend(const config::LegendOverlay& legend, int width, int height) {
+    auto& o = *mOverlay;
+    const scene::SceneLut* lut = mScene->lut(legend.transfer);
+    const config::TransferFunctionDef* def = mScenario->findTransfer(legend.transfer);
+    if (!lut || !def) return;
+    const color::TransferFunction& tf = *lut->function;
+    std::string title = !legend.title.empty() ? legend.title : !def->label.empty() ? def->label : def->name;
+    if (!tf.units.empty()) title += " (" + tf.units + ")";
+    const float line = float(o.font().lineHeight());
+    const float barW = 260, barH = 16;
+    if (tf.discrete()) {
+        auto patches = color::legendPatches(tf);
+        float w = o.measure(title);
+        for (const auto& p : patches) w = std::max(w, 28 + o.measure(p.label));
+        const float h = line * float(patches.size() + 1) + 20;
+        const float x = float(width) - w - 36, y = float(height) - h - 12;
+        o.rect(x, y, w + 24, h, kPanel);
+        o.text(x + 12, y + 8 + float(o.font().ascent()), title, kText);
+        float py = y + 8 + line;
+        for (const auto& p : patches) {
+            o.rect(x + 12, py + 3, 18, line - 6, glm::vec4(p.color.r, p.color.g, p.color.b, 1.0f));
+            o.text(x + 40, py + float(o.font().ascent()), p.label, kText);
+            py += line;
+        }
+        return;
+    }
+    const float w = std::max(barW, o.measure(title)) + 24;
+    const float h = line * 2 + barH + 28;
+    const float x = float(width) - w - 12, y = float(height) - h - 12;
+    o.rect(x, y, w, h, kPanel);
+    o.text(x + 12, y + 8 + float(o.font().ascent()), title, kText);
+    const float barX = x + 12, barY = y + 12 + line;
+    o.image(barX, barY, barW, barH, lut->texture.id());
+    for (const auto& t : color::legendTicks(tf)) {
+        const float tx = barX + float(t.position) * barW;
+        o.rect(tx - 0.5f, barY + barH, 1, 5, kText);
+        const float tw = o.measure(t.label);
+        o.text(std::clamp(tx - tw / 2, barX - 6, barX + barW - tw + 6),
+               barY + barH + 6 + float(o.font().ascent()), t.label, kText);
+    }
+}
+
+}  // namespace kiosk::app

@@ -1,0 +1,70 @@
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "config/Scenario.h"
+#include "runtime/anim/CameraPath.h"
+#include "runtime/anim/TimeLabel.h"
+#include "runtime/app/FrameStats.h"
+#include "runtime/core/Result.h"
+#include "runtime/gl/Context.h"
+#include "runtime/render/OverlayRenderer.h"
+#include "runtime/scene/TerrainScene.h"
+
+namespace kiosk::app {
+
+/**
+ * @brief One loaded scenario ready to draw: the typed scenario, its terrain scene, overlays and
+ * camera. Shared by `render` and `play`. Render thread only.
+ */
+class Session {
+public:
+    /** @brief Read and check the scenario, open its stores, build GL resources. */
+    static Result<std::unique_ptr<Session>> open(const std::filesystem::path& scenarioPath,
+                                                 const gl::Caps& caps);
+    /** @brief Same, letting a caller adjust the checked scenario first (benchmarks, tests). */
+    static Result<std::unique_ptr<Session>> open(
+        const std::filesystem::path& scenarioPath, const gl::Caps& caps,
+        const std::function<void(config::Scenario&)>& adjust);
+
+    const config::Scenario& scenario() const noexcept { return *mScenario; }
+    scene::TerrainScene& terrain() noexcept { return *mScene; }
+
+    /** @brief Scenario start/end in epoch seconds (from the clock, else the sequences). */
+    double startTime() const noexcept { return mStart; }
+    double endTime() const noexcept { return mEnd; }
+
+    /**
+     * @brief The camera at data time `time`: `viewpoint` if named, else the scenario's camera
+     * path, else its initial viewpoint, else an overview of the data.
+     */
+    Result<math::Viewpoint> viewpointAt(double time, const std::string& viewpoint) const;
+
+    /** @brief Select and load tiles for the view without drawing (render waits with this). */
+    void prepare(const math::Camera& camera, double time) { mScene->update(camera, time); }
+
+    /** @brief Update tiles for the view and draw terrain + overlays into the bound framebuffer. */
+    FrameRecord drawFrame(const math::Camera& camera, double time, int width, int height);
+
+private:
+    Session() = default;
+    void drawOverlays(double time, int width, int height);
+    void drawLegend(const config::LegendOverlay& legend, int width, int height);
+
+    std::unique_ptr<config::Scenario> mScenario;
+    std::unique_ptr<scene::TerrainScene> mScene;
+    std::optional<render::OverlayRenderer> mOverlay;
+    anim::CameraPath mPath;
+    anim::TimeZone mZone;
+    double mStart = 0, mEnd = 0;
+};
+
+/** @brief Camera for a viewpoint with clip planes fitted to the scene. */
+math::Camera makeCamera(const math::Viewpoint& vp, const math::Aabb& bounds, int width, int height,
+                        double fovY);
+
+}  // namespace kiosk::app

@@ -1,0 +1,512 @@
+#include "runtime/import/GdalRaster.h"
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <cpl_string.h>
+#include <gdal_utils.h>
+#include <gdalwarper.h>
+#include <ogr_srs_api.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <mutex>
+
+namespace kiosk::import {
+
+namespace {
+
+struct SrsDeleter {
+    void operator()(void* h) const noexcept {
+        if (h) OSRDestroySpatialReference(OGRSpatialReferenceH(h));
+    }
+};
+using Srs = std::unique_ptr<void, SrsDeleter>;
+
+StoreCrs describe(OGRSpatialReferenceH srs) {
+    StoreCrs c;
+    const char* auth = OSRGetAuthorityName(srs, nullptr);
+    const char* code = OSRGetAuthorityCode(srs, nullptr);
+    if (auth && code && std::strcmp(auth, "EPSG") == 0) c.srsId = std::atoi(code);
+    const char* name = OSRGetName(srs);
+    c.name = name ? name : "unnamed";
+    char* wkt = nullptr;
+    if (OSRExportToWkt(srs, &wkt) == OGRERR_NONE && wkt) c.wkt = wkt;
+    CPLFree(wkt);
+    if (c.srsId <= 0) c.srsId = 100001;  // a custom CRS row of this store
+    return c;
+}
+
+Srs srsFromWkt(const std::string& wkt) {
+    Srs s(OSRNewSpatialReference(nullptr));
+    OSRSetAxisMappingStrategy(OGRSpatialReferenceH(s.get()), OAMS_TRADITIONAL_GIS_ORDER);
+    if (OSRSetFromUserInput(OGRSpatialReferenceH(s.get()), wkt.c_str()) != OGRERR_NONE)
+        return nullptr;
+    return s;
+}
+
+bool sameCrs(const std::string& a, const std::string& b) {
+    if (a == b) return true;
+    Srs sa = srsFromWkt(a), sb = srsFromWkt(b);
+    if (!sa || !sb) return false;
+    return OSRIsSame(OGRSpatialReferenceH(sa.get()), OGRSpatialReferenceH(sb.get())) != 0;
+}
+
+// A VRT copy of `src` we may re-georeference without touching the file.
+GdalDataset vrtCopy(GDALDatasetH src) {
+    GDALDriverH vrt = GDALGetDriverByName("VRT");
+    return GdalDataset(GDALCreateCopy(vrt, "", src, FALSE, nullptr, nullptr, nullptr));
+}
+
+Result<GdalDataset> warpToVrt(GDALDatasetH src, const std::vector<std::string>& args,
+                              const std::string& name) {
+    CPLStringList argv;
+    for (const auto& a : args) argv.AddString(a.c_str());
+    GDALWarpAppOptions* o = GDALWarpAppOptionsNew(argv.List(), nullptr);
+    int usageError = 0;
+    GDALDatasetH in[1] = {src};
+    CPLErrorReset();
+    GDALDatasetH out = GDALWarp("", nullptr, 1, in, o, &usageError);
+    GDALWarpAppOptionsFree(o);
+    if (!out) {
+        Diagnostics d;
+        d.error("IMPORT_WARP", name, "", gdalError("cannot reproject the source"));
+        return d;
+    }
+    return GdalDataset(out);
+}
+
+std::string fmt(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+}
+
+}  // namespace
+
+void initGdal() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        GDALAllRegister();
+        CPLPushErrorHandler(CPLQuietErrorHandler);
+        // Bounded memory: the default cache is 5 % of RAM, far above our import budget.
+        GDALSetCacheMax64(GIntBig(96) * 1024 * 1024);
+    });
+}
+
+std::string gdalError(const std::string& fallback) {
+    const char* m = CPLGetLastErrorMsg();
+    return m && *m ? fallback + ": " + m : fallback;
+}
+
+Result<GdalDataset> openRaster(const std::string& path) {
+    initGdal();
+    CPLErrorReset();
+    GDALDatasetH h =
+        GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR, nullptr,
+                   nullptr, nullptr);
+    if (!h) {
+        Diagnostics d;
+        d.error("IMPORT_UNREADABLE", path, "", gdalError("cannot read raster"));
+        return d;
+    }
+    if (GDALGetRasterCount(h) < 1) {
+        GDALClose(h);
+        Diagnostics d;
+        d.error("IMPORT_UNREADABLE", path, "",
+                "no raster band (for NetCDF name the variable with --variable)");
+        return d;
+    }
+    return GdalDataset(h);
+}
+
+StoreCrs localCrs() {
+    StoreCrs c;
+    c.srsId = 100000;
+    c.name = "geokiosk local metres";
+    c.wkt =
+        "LOCAL_CS[\"geokiosk local metres\",LOCAL_DATUM[\"geokiosk\",0],UNIT[\"metre\",1],"
+        "AXIS[\"Easting\",EAST],AXIS[\"Northing\",NORTH]]";
+    return c;
+}
+
+Result<StoreCrs> crsFromUser(const std::string& text) {
+    initGdal();
+    Srs s(OSRNewSpatialReference(nullptr));
+    if (OSRSetFromUserInput(OGRSpatialReferenceH(s.get()), text.c_str()) != OGRERR_NONE) {
+        Diagnostics d;
+        d.error("IMPORT_BAD_CRS", "", "--crs", "unknown CRS '" + text + "'");
+        return d;
+    }
+    return describe(OGRSpatialReferenceH(s.get()));
+}
+
+std::optional<StoreCrs> crsOfDataset(GDALDatasetH ds) {
+    OGRSpatialReferenceH s = GDALGetSpatialRef(ds);
+    if (!s) return std::nullopt;
+    return describe(s);
+}
+
+StoreCrs utmCrsFor(double lon, double lat) {
+    const int zone = std::clamp(int(std::floor((lon + 180.0) / 6.0)) + 1, 1, 60);
+    auto c = crsFromUser("EPSG:" + std::to_string((lat >= 0 ? 32600 : 32700) + zone));
+    return c ? *c : localCrs();
+}
+
+double chooseScale(double range, double minStep) {
+    const double need = std::max(minStep, range * 1.5 / 65534.0);
+    return std::exp2(std::ceil(std::log2(std::max(need, 1e-9))));
+}
+
+std::optional<std::pair<double, double>> bandRange(GDALDatasetH ds, int band) {
+    GDALRasterBandH b = GDALGetRasterBand(ds, band);
+    double mm[2] = {0, 0};
+    CPLErrorReset();
+    // Exact up to 64 Mpixel (one extra read, cheap next to encoding); sampled above that, where
+    // chooseScale's margin absorbs what sampling misses.
+    const bool approx = double(GDALGetRasterXSize(ds)) * GDALGetRasterYSize(ds) > 64e6;
+    if (GDALComputeRasterMinMax(b, approx, mm) != CE_None || !std::isfinite(mm[0])) {
+        CPLErrorReset();
+        if (GDALComputeRasterMinMax(b, FALSE, mm) != CE_None || !std::isfinite(mm[0]))
+            return std::nullopt;
+    }
+    const double s = GDALGetRasterScale(b, nullptr), o = GDALGetRasterOffset(b, nullptr);
+    double a = mm[0] * s + o, z = mm[1] * s + o;
+    if (a > z) std::swap(a, z);
+    return std::make_pair(a, z);
+}
+
+GdalDataset memRaster(const std::vector<float>& values, int width, int height,
+                      const std::array<double, 6>& gt, const std::string& wkt,
+                      std::optional<double> nodata) {
+    initGdal();
+    GDALDriverH mem = GDALGetDriverByName("MEM");
+    GDALDatasetH ds = GDALCreate(mem, "", width, height, 1, GDT_Float32, nullptr);
+    if (!ds) return nullptr;
+    double g[6];
+    std::copy(gt.begin(), gt.end(), g);
+    GDALSetGeoTransform(ds, g);
+    if (!wkt.empty()) GDALSetProjection(ds, wkt.c_str());
+    GDALRasterBandH b = GDALGetRasterBand(ds, 1);
+    if (nodata) GDALSetRasterNoDataValue(b, *nodata);
+    if (GDALRasterIO(b, GF_Write, 0, 0, width, height, const_cast<float*>(values.data()), width,
+                     height, GDT_Float32, 0, 0) != CE_None) {
+        GDALClose(ds);
+        return nullptr;
+    }
+    return GdalDataset(ds);
+}
+
+namespace {
+
+// Georeference check shared by both planners: returns a dataset (owned by `chain`) that has a
+// geotransform and, when one is known, a CRS; or an error naming the file.
+Result<GDALDatasetH> georeferenced(GdalDataset source, const PlaceOptions& opt,
+                                   std::optional<StoreCrs>& crs, DatasetChain& chain) {
+    Diagnostics d;
+    double gt[6];
+    GDALDatasetH src = chain.add(std::move(source));
+    const bool hasGt = GDALGetGeoTransform(src, gt) == CE_None &&
+                       !(gt[0] == 0 && gt[1] == 1 && gt[3] == 0 && gt[5] == 1);
+    crs = crsOfDataset(src);
+    std::optional<StoreCrs> userCrs;
+    if (opt.crs) {
+        auto c = crsFromUser(*opt.crs);
+        if (!c) return c.diagnostics;
+        userCrs = *c;
+    }
+    if (hasGt && (crs || !userCrs)) return src;
+    if (!hasGt && !opt.pixelSize) {
+        d.error("IMPORT_NO_GEOREF", opt.sourceName, "",
+                "source has no georeferencing (give --pixel-size M, and --crs if known)");
+        return d;
+    }
+    GDALDatasetH copy = chain.add(vrtCopy(src));
+    if (!copy) {
+        d.error("IMPORT_UNREADABLE", opt.sourceName, "", gdalError("cannot wrap the source"));
+        return d;
+    }
+    if (!hasGt) {
+        const double p = *opt.pixelSize;
+        const double h = GDALGetRasterYSize(copy);
+        double g[6] = {0, p, 0, h * p, 0, -p};
+        GDALSetGeoTransform(copy, g);
+    }
+    if (!crs && userCrs) {
+        GDALSetProjection(copy, userCrs->wkt.c_str());
+        crs = crsOfDataset(copy);
+        if (crs) crs->srsId = userCrs->srsId;
+    }
+    return copy;
+}
+
+}  // namespace
+
+Result<PlannedSource> planGrid(GdalDataset source, const PlaceOptions& opt, int tileSize) {
+    Diagnostics d;
+    PlannedSource out;
+    std::optional<StoreCrs> srcCrs;
+    auto geo = georeferenced(std::move(source), opt, srcCrs, out.placed.chain);
+    if (!geo) return geo.diagnostics;
+    GDALDatasetH ds = *geo;
+
+    StoreCrs target;
+    bool warp = false;
+    if (opt.crs) {
+        auto c = crsFromUser(*opt.crs);
+        if (!c) return c.diagnostics;
+        target = *c;
+        warp = srcCrs && !sameCrs(srcCrs->wkt, target.wkt);
+    } else if (srcCrs) {
+        OGRSpatialReferenceH s = GDALGetSpatialRef(ds);
+        if (s && OSRIsGeographic(s)) {
+            double gt[6];
+            GDALGetGeoTransform(ds, gt);
+            const double lon = gt[0] + gt[1] * GDALGetRasterXSize(ds) / 2.0;
+            const double lat = gt[3] + gt[5] * GDALGetRasterYSize(ds) / 2.0;
+            target = utmCrsFor(lon, lat);
+            warp = true;
+        } else {
+            target = *srcCrs;
+        }
+    } else {
+        target = localCrs();
+    }
+    double gt[6];
+    GDALGetGeoTransform(ds, gt);
+    const bool square = gt[2] == 0 && gt[4] == 0 && gt[5] < 0 &&
+                        std::fabs(std::fabs(gt[5]) - gt[1]) <= 1e-9 * gt[1];
+    GDALDatasetH placed = ds;
+    if (warp || !square) {
+        std::vector<std::string> args = {
+            "-of", "VRT", "-r", opt.nearest ? "near" : "bilinear", "-wo", "INIT_DEST=NO_DATA"};
+        if (!opt.imagery)
+            args.insert(args.end(), {"-ot", "Float32", "-dstnodata", "nan"});
+        else
+            args.insert(args.end(), {"-dstalpha"});
+        if (warp) args.insert(args.end(), {"-t_srs", target.wkt});
+        if (!square) {
+            const double p = std::min(std::fabs(gt[1]), std::fabs(gt[5]));
+            args.insert(args.end(), {"-tr", fmt(p), fmt(p)});
+        }
+        auto w = warpToVrt(ds, args, opt.sourceName);
+        if (!w) return w.diagnostics;
+        placed = out.placed.chain.add(std::move(*w));
+        GDALGetGeoTransform(placed, gt);
+    }
+    const int width = GDALGetRasterXSize(placed), height = GDALGetRasterYSize(placed);
+    const double p = gt[1];
+    if (!(p > 0) || width < 1 || height < 1) {
+        d.error("IMPORT_NO_GEOREF", opt.sourceName, "", "source has an invalid geotransform");
+        return d;
+    }
+    int levels = 1;
+    while (std::int64_t(tileSize) << (levels - 1) < std::max(width, height)) ++levels;
+    io::TileGrid& g = out.grid;
+    g.srsId = target.srsId;
+    g.crsName = target.name;
+    g.crsWkt = target.wkt;
+    const double size = p * double(std::int64_t(tileSize) << (levels - 1));
+    g.minX = gt[0];
+    g.maxY = gt[3];
+    g.maxX = g.minX + size;
+    g.minY = g.maxY - size;
+    for (int l = 0; l < levels; ++l) {
+        io::TileMatrix m;
+        m.level = l;
+        m.matrixWidth = m.matrixHeight = 1 << l;
+        m.tileWidth = m.tileHeight = tileSize;
+        m.pixelXSize = m.pixelYSize = p * double(1 << (levels - 1 - l));
+        g.levels.push_back(m);
+    }
+    out.placed.ds = placed;
+    out.placed.window = {0, 0, width, height};
+    return out;
+}
+
+Result<PlacedSource> placeOnGrid(GdalDataset source, const io::TileGrid& grid,
+                                 const PlaceOptions& opt) {
+    Diagnostics d;
+    std::optional<StoreCrs> srcCrs;
+    PlaceOptions o = opt;
+    const bool noCrs = !GDALGetSpatialRef(raw(source));
+    if (!o.crs && noCrs) o.crs = grid.crsWkt;
+    PlacedSource ps;
+    auto geo = georeferenced(std::move(source), o, srcCrs, ps.chain);
+    if (!geo) return geo.diagnostics;
+    GDALDatasetH src = *geo;
+    const io::TileMatrix& finest = grid.levels.back();
+    const double p = finest.pixelXSize;
+    const std::int64_t full = std::int64_t(finest.tileWidth) * finest.matrixWidth;
+    double gt[6];
+    GDALGetGeoTransform(src, gt);
+    const int sw = GDALGetRasterXSize(src), sh = GDALGetRasterYSize(src);
+    const bool same = !srcCrs || sameCrs(srcCrs->wkt, grid.crsWkt);
+    if (noCrs && !opt.crs)
+        ps.warnings.push_back("source has no CRS; assuming the store's (" + grid.crsName + ")");
+
+    double minX, minY, maxX, maxY;
+    if (same) {
+        minX = gt[0];
+        maxX = gt[0] + gt[1] * sw;
+        maxY = gt[3];
+        minY = gt[3] + gt[5] * sh;
+        if (minY > maxY) std::swap(minY, maxY);
+    } else {
+        CPLStringList topts;
+        topts.SetNameValue("DST_SRS", grid.crsWkt.c_str());
+        void* tr = GDALCreateGenImgProjTransformer2(src, nullptr, topts.List());
+        double ogt[6], ext[4];
+        int nx = 0, ny = 0;
+        if (!tr || GDALSuggestedWarpOutput2(src, GDALGenImgProjTransform, tr, ogt, &nx, &ny, ext,
+                                            0) != CE_None) {
+            if (tr) GDALDestroyGenImgProjTransformer(tr);
+            d.error(
+                "IMPORT_CRS_MISMATCH", opt.sourceName, "",
+                gdalError("cannot transform the source into the store CRS (" + grid.crsName + ")"));
+            return d;
+        }
+        GDALDestroyGenImgProjTransformer(tr);
+        minX = ext[0], minY = ext[1], maxX = ext[2], maxY = ext[3];
+    }
+    GridWindow w;
+    w.x0 = int(std::clamp<double>(std::floor((minX - grid.minX) / p + 1e-6), 0, double(full)));
+    w.x1 = int(std::clamp<double>(std::ceil((maxX - grid.minX) / p - 1e-6), 0, double(full)));
+    w.y0 = int(std::clamp<double>(std::floor((grid.maxY - maxY) / p + 1e-6), 0, double(full)));
+    w.y1 = int(std::clamp<double>(std::ceil((grid.maxY - minY) / p - 1e-6), 0, double(full)));
+    if (w.empty()) {
+        char buf[256];
+        std::snprintf(buf, sizeof buf,
+                      "source extent (%.1f %.1f, %.1f %.1f) does not overlap the store extent "
+                      "(%.1f %.1f, %.1f %.1f)",
+                      minX, minY, maxX, maxY, grid.minX, grid.minY, grid.maxX, grid.maxY);
+        d.error("IMPORT_EXTENT_MISMATCH", opt.sourceName, "", buf);
+        return d;
+    }
+    ps.window = w;
+    const double ox = (gt[0] - grid.minX) / p, oy = (grid.maxY - gt[3]) / p;
+    const bool aligned = same && gt[2] == 0 && gt[4] == 0 && std::fabs(gt[1] - p) <= 1e-9 * p &&
+                         std::fabs(gt[5] + p) <= 1e-9 * p &&
+                         std::fabs(ox - std::round(ox)) < 1e-6 &&
+                         std::fabs(oy - std::round(oy)) < 1e-6 && !opt.imagery;
+    if (aligned) {
+        ps.ds = src;
+        ps.xOff = w.x0 - int(std::round(ox));
+        ps.yOff = w.y0 - int(std::round(oy));
+        return ps;
+    }
+    std::vector<std::string> args = {"-of",
+                                     "VRT",
+                                     "-r",
+                                     opt.nearest ? "near" : "bilinear",
+                                     "-wo",
+                                     "INIT_DEST=NO_DATA",
+                                     "-t_srs",
+                                     grid.crsWkt,
+                                     "-te",
+                                     fmt(grid.minX + w.x0 * p),
+                                     fmt(grid.maxY - w.y1 * p),
+                                     fmt(grid.minX + w.x1 * p),
+                                     fmt(grid.maxY - w.y0 * p),
+                                     "-ts",
+                                     std::to_string(w.width()),
+                                     std::to_string(w.height())};
+    if (opt.imagery)
+        args.insert(args.end(), {"-ot", "Byte", "-dstalpha"});
+    else
+        args.insert(args.end(), {"-ot", "Float32", "-dstnodata", "nan"});
+    auto warped = warpToVrt(src, args, opt.sourceName);
+    if (!warped) return warped.diagnostics;
+    ps.ds = ps.chain.add(std::move(*warped));
+    ps.xOff = ps.yOff = 0;
+    return ps;
+}
+
+ScalarRowSource scalarRows(const PlacedSource& p, int band, double factor,
+                           const std::string& sourceName) {
+    GDALDatasetH ds = p.ds;
+    const int xOff = p.xOff, yOff = p.yOff, width = p.window.width();
+    return [=](int row0, int rows, float* out) -> Diagnostics {
+        Diagnostics d;
+        GDALRasterBandH b = GDALGetRasterBand(ds, band);
+        int hasNodata = 0;
+        const double nodata = GDALGetRasterNoDataValue(b, &hasNodata);
+        const double scale = GDALGetRasterScale(b, nullptr) * factor;
+        const double offset = GDALGetRasterOffset(b, nullptr) * factor;
+        std::vector<double> buf(std::size_t(width) * std::size_t(rows));
+        CPLErrorReset();
+        if (GDALRasterIO(b, GF_Read, xOff, yOff + row0, width, rows, buf.data(), width, rows,
+                         GDT_Float64, 0, 0) != CE_None) {
+            d.error("IMPORT_READ", sourceName, "", gdalError("cannot read rows"));
+            return d;
+        }
+        const bool nanIsNodata = hasNodata && std::isnan(nodata);
+        const bool warped =
+            GDALGetDatasetDriver(ds) &&
+            std::strcmp(GDALGetDriverShortName(GDALGetDatasetDriver(ds)), "VRT") == 0 &&
+            nanIsNodata;
+        for (std::size_t i = 0; i < buf.size(); ++i) {
+            const double v = buf[i];
+            if (std::isnan(v)) {
+                if (!nanIsNodata && !warped) {
+                    d.error("IMPORT_NAN", sourceName,
+                            "row " + std::to_string(row0 + yOff + int(i / std::size_t(width))),
+                            "source contains NaN values but NaN is not its nodata value");
+                    return d;
+                }
+                out[i] = std::numeric_limits<float>::quiet_NaN();
+            } else if (hasNodata && v == nodata) {
+                out[i] = std::numeric_limits<float>::quiet_NaN();
+            } else if (!std::isfinite(v)) {
+                d.error("IMPORT_NAN", sourceName,
+                        "row " + std::to_string(row0 + yOff + int(i / std::size_t(width))),
+                        "source contains infinite values");
+                return d;
+            } else {
+                out[i] = float(v * scale + offset);
+            }
+        }
+        return d;
+    };
+}
+
+RgbaRowSource rgbaRows(const PlacedSource& p, const std::string& sourceName) {
+    GDALDatasetH ds = p.ds;
+    const int xOff = p.xOff, yOff = p.yOff, width = p.window.width();
+    return [=](int row0, int rows, std::uint8_t* out) -> Diagnostics {
+        Diagnostics d;
+        const int n = GDALGetRasterCount(ds);
+        int alphaBand = 0;
+        std::vector<int> colour;
+        for (int i = 1; i <= n; ++i) {
+            if (GDALGetRasterColorInterpretation(GDALGetRasterBand(ds, i)) == GCI_AlphaBand)
+                alphaBand = i;
+            else if (colour.size() < 3)
+                colour.push_back(i);
+        }
+        if (colour.empty()) {
+            d.error("IMPORT_READ", sourceName, "", "imagery has no colour band");
+            return d;
+        }
+        const std::size_t count = std::size_t(width) * std::size_t(rows);
+        std::vector<std::uint8_t> buf(count);
+        auto read = [&](int band, int channel) -> bool {
+            if (GDALRasterIO(GDALGetRasterBand(ds, band), GF_Read, xOff, yOff + row0, width, rows,
+                             buf.data(), width, rows, GDT_Byte, 0, 0) != CE_None)
+                return false;
+            for (std::size_t i = 0; i < count; ++i) out[i * 4 + std::size_t(channel)] = buf[i];
+            return true;
+        };
+        CPLErrorReset();
+        bool ok = true;
+        for (int c = 0; c < 3 && ok; ++c)
+            ok = read(colour[colour.size() == 3 ? std::size_t(c) : 0], c);
+        if (ok && alphaBand) ok = read(alphaBand, 3);
+        if (!alphaBand)
+            for (std::size_t i = 0; i < count; ++i) out[i * 4 + 3] = 255;
+        if (!ok) d.error("IMPORT_READ", sourceName, "", gdalError("cannot read imagery rows"));
+        return d;
+    };
+}
+
+}  // namespace kiosk::import

@@ -1,0 +1,213 @@
+#include "runtime/import/SwwMesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <netcdf.h>
+
+namespace kiosk::import {
+
+namespace {
+
+struct NcFile {
+    int id = -1;
+    ~NcFile() {
+        if (id >= 0) nc_close(id);
+    }
+};
+
+double attDouble(int nc, const char* name, double fallback) {
+    double v = 0;
+    return nc_get_att_double(nc, NC_GLOBAL, name, &v) == NC_NOERR ? v : fallback;
+}
+
+}  // namespace
+
+Result<SwwMesh> SwwMesh::open(const std::string& path) {
+    Diagnostics d;
+    NcFile nc;
+    int rc = nc_open(path.c_str(), NC_NOWRITE, &nc.id);
+    if (rc != NC_NOERR) {
+        nc.id = -1;
+        d.error("IMPORT_UNREADABLE", path, "", std::string("cannot read SWW: ") + nc_strerror(rc));
+        return d;
+    }
+    auto var = [&](const char* name, int& id, int& ndims) -> bool {
+        if (nc_inq_varid(nc.id, name, &id) != NC_NOERR) return false;
+        return nc_inq_varndims(nc.id, id, &ndims) == NC_NOERR;
+    };
+    auto dimLen = [&](int varId, int which) -> std::size_t {
+        int dims[NC_MAX_VAR_DIMS];
+        nc_inq_vardimid(nc.id, varId, dims);
+        std::size_t n = 0;
+        nc_inq_dimlen(nc.id, dims[which], &n);
+        return n;
+    };
+    SwwMesh m;
+    m.mPath = path;
+    int xId, yId, volId, timeId, stageId, nd;
+    if (!var("x", xId, nd) || !var("y", yId, nd) || !var("volumes", volId, nd) ||
+        !var("time", timeId, nd) || !var("stage", stageId, nd) || nd != 2) {
+        d.error("IMPORT_SWW", path, "",
+                "not an ANUGA SWW file (needs x, y, volumes, time and stage[time][points])");
+        return d;
+    }
+    const std::size_t np = dimLen(xId, 0), nt = dimLen(timeId, 0), nv = dimLen(volId, 0);
+    m.mX.resize(np);
+    m.mY.resize(np);
+    m.mTri.resize(nv * 3);
+    m.mTimes.resize(nt);
+    if (nc_get_var_double(nc.id, xId, m.mX.data()) != NC_NOERR ||
+        nc_get_var_double(nc.id, yId, m.mY.data()) != NC_NOERR ||
+        nc_get_var_int(nc.id, volId, m.mTri.data()) != NC_NOERR ||
+        nc_get_var_double(nc.id, timeId, m.mTimes.data()) != NC_NOERR) {
+        d.error("IMPORT_SWW", path, "", "cannot read the mesh variables");
+        return d;
+    }
+    for (int i : m.mTri)
+        if (i < 0 || std::size_t(i) >= np) {
+            d.error("IMPORT_SWW", path, "volumes", "triangle refers to a point out of range");
+            return d;
+        }
+    const double xll = attDouble(nc.id, "xllcorner", 0), yll = attDouble(nc.id, "yllcorner", 0);
+    for (auto& v : m.mX) v += xll;
+    for (auto& v : m.mY) v += yll;
+    m.mStartTime = attDouble(nc.id, "starttime", 0);
+    for (auto& t : m.mTimes) t += m.mStartTime;
+    const int zone = int(attDouble(nc.id, "zone", -1));
+    if (zone >= 1 && zone <= 60)
+        m.mEpsg = (attDouble(nc.id, "false_northing", 0) > 0 ? 32700 : 32600) + zone;
+    int eId;
+    if (var("elevation", eId, nd))
+        m.mElevationVar = "elevation";
+    else if (var("z", eId, nd))
+        m.mElevationVar = "z";
+    else {
+        d.error("IMPORT_SWW", path, "", "no elevation (or z) variable");
+        return d;
+    }
+    m.mElevationPerStep = nd == 2;
+    return m;
+}
+
+void SwwMesh::bounds(double& minX, double& minY, double& maxX, double& maxY) const {
+    minX = *std::min_element(mX.begin(), mX.end());
+    maxX = *std::max_element(mX.begin(), mX.end());
+    minY = *std::min_element(mY.begin(), mY.end());
+    maxY = *std::max_element(mY.begin(), mY.end());
+}
+
+Result<std::vector<float>> SwwMesh::depth(int step) const {
+    Diagnostics d;
+    NcFile nc;
+    if (nc_open(mPath.c_str(), NC_NOWRITE, &nc.id) != NC_NOERR) {
+        nc.id = -1;
+        d.error("IMPORT_UNREADABLE", mPath, "", "cannot reopen SWW");
+        return d;
+    }
+    const std::size_t np = mX.size();
+    std::vector<float> stage(np), elev(np);
+    int sId, eId;
+    nc_inq_varid(nc.id, "stage", &sId);
+    nc_inq_varid(nc.id, mElevationVar.c_str(), &eId);
+    const std::size_t start[2] = {std::size_t(step), 0}, count[2] = {1, np};
+    int rc = nc_get_vara_float(nc.id, sId, start, count, stage.data());
+    if (rc == NC_NOERR) {
+        if (mElevationPerStep)
+            rc = nc_get_vara_float(nc.id, eId, start, count, elev.data());
+        else
+            rc = nc_get_var_float(nc.id, eId, elev.data());
+    }
+    if (rc != NC_NOERR) {
+        d.error("IMPORT_SWW", mPath, "step " + std::to_string(step),
+                std::string("cannot read stage/elevation: ") + nc_strerror(rc));
+        return d;
+    }
+    for (std::size_t i = 0; i < np; ++i) {
+        stage[i] -= elev[i];
+        if (!std::isfinite(stage[i])) {
+            d.error("IMPORT_NAN", mPath, "step " + std::to_string(step),
+                    "stage or elevation is NaN at point " + std::to_string(i));
+            return d;
+        }
+    }
+    return stage;
+}
+
+ScalarRowSource SwwMesh::rasterize(const io::TileGrid& grid, const GridWindow& window,
+                                   std::vector<float> depth, double wetThreshold) const {
+    // Bucket triangles by 256-row band so a strip only visits triangles that can touch it.
+    const double p = grid.levels.back().pixelXSize;
+    constexpr int kBand = 256;
+    const int bands = (window.height() + kBand - 1) / kBand;
+    auto buckets = std::make_shared<std::vector<std::vector<int>>>(std::size_t(std::max(bands, 1)));
+    const std::size_t nt = mTri.size() / 3;
+    auto rowOf = [&](double y) { return (grid.maxY - y) / p - 0.5 - window.y0; };
+    for (std::size_t t = 0; t < nt; ++t) {
+        double lo = 1e300, hi = -1e300;
+        for (int k = 0; k < 3; ++k) {
+            const double r = rowOf(mY[std::size_t(mTri[t * 3 + std::size_t(k)])]);
+            lo = std::min(lo, r);
+            hi = std::max(hi, r);
+        }
+        const int b0 = std::max(0, int(std::floor(lo)) / kBand);
+        const int b1 = std::min(bands - 1, int(std::ceil(hi)) / kBand);
+        for (int b = b0; b <= b1; ++b) (*buckets)[std::size_t(b)].push_back(int(t));
+    }
+    auto dep = std::make_shared<std::vector<float>>(std::move(depth));
+    const std::vector<double>* xs = &mX;
+    const std::vector<double>* ys = &mY;
+    const std::vector<int>* tri = &mTri;
+    const double minX = grid.minX, maxY = grid.maxY;
+    const GridWindow w = window;
+    return [=](int row0, int rows, float* out) -> Diagnostics {
+        const int width = w.width();
+        std::fill(out, out + std::size_t(width) * std::size_t(rows),
+                  std::numeric_limits<float>::quiet_NaN());
+        const int b0 = row0 / kBand, b1 = std::min(bands - 1, (row0 + rows - 1) / kBand);
+        std::vector<char> seen(tri->size() / 3, 0);
+        for (int b = b0; b <= b1; ++b) {
+            for (int t : (*buckets)[std::size_t(b)]) {
+                if (seen[std::size_t(t)]) continue;
+                seen[std::size_t(t)] = 1;
+                const int i0 = (*tri)[std::size_t(t) * 3], i1 = (*tri)[std::size_t(t) * 3 + 1],
+                          i2 = (*tri)[std::size_t(t) * 3 + 2];
+                // Vertex positions in window pixel units (pixel centre at integer + 0.5).
+                const double ax = ((*xs)[std::size_t(i0)] - minX) / p - w.x0,
+                             ay = (maxY - (*ys)[std::size_t(i0)]) / p - w.y0;
+                const double bx = ((*xs)[std::size_t(i1)] - minX) / p - w.x0,
+                             by = (maxY - (*ys)[std::size_t(i1)]) / p - w.y0;
+                const double cx = ((*xs)[std::size_t(i2)] - minX) / p - w.x0,
+                             cy = (maxY - (*ys)[std::size_t(i2)]) / p - w.y0;
+                const double area = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay);
+                if (std::fabs(area) < 1e-12) continue;
+                const int px0 = std::max(0, int(std::floor(std::min({ax, bx, cx}) - 0.5)));
+                const int px1 = std::min(width - 1, int(std::ceil(std::max({ax, bx, cx}) - 0.5)));
+                const int py0 = std::max(row0, int(std::floor(std::min({ay, by, cy}) - 0.5)));
+                const int py1 =
+                    std::min(row0 + rows - 1, int(std::ceil(std::max({ay, by, cy}) - 0.5)));
+                const float da = (*dep)[std::size_t(i0)], db = (*dep)[std::size_t(i1)],
+                            dc = (*dep)[std::size_t(i2)];
+                for (int py = py0; py <= py1; ++py) {
+                    const double sy = py + 0.5;
+                    for (int px = px0; px <= px1; ++px) {
+                        const double sx = px + 0.5;
+                        const double l1 = ((bx - sx) * (cy - sy) - (cx - sx) * (by - sy)) / area;
+                        const double l2 = ((cx - sx) * (ay - sy) - (ax - sx) * (cy - sy)) / area;
+                        const double l3 = 1.0 - l1 - l2;
+                        constexpr double kEps = -1e-9;
+                        if (l1 < kEps || l2 < kEps || l3 < kEps) continue;
+                        double v = l1 * da + l2 * db + l3 * dc;
+                        if (v < wetThreshold) v = 0;
+                        out[std::size_t(py - row0) * std::size_t(width) + std::size_t(px)] =
+                            float(v);
+                    }
+                }
+            }
+        }
+        return Diagnostics{};
+    };
+}
+
+}  // namespace kiosk::import

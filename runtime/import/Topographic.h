@@ -1,0 +1,32 @@
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "runtime/core/Diagnostics.h"
+#include "runtime/topo/Hillshade.h"
+
+namespace kiosk::import {
+
+struct TopographicOptions {
+    std::filesystem::path store;
+    std::string elevation = "elevation";  ///< scalar layer to shade
+    std::string name = "hillshade";       ///< imagery layer to write
+    topo::HillshadeParams light;          ///< azimuth, altitude, z factor, variant
+    bool shadows = false;                 ///< cast shadows along the light (ray marching)
+    double shadowDarkening = 0.5;
+    int threads = 2;
+    bool quiet = false;
+};
+
+/**
+ * @brief `geokiosk import topographic`: a hillshade pyramid computed from the store's own
+ * full-resolution elevation (Döllner §7 / Baumann: shading as a texture, so coarse geometry still
+ * looks fully detailed). Stored as an imagery layer, R = G = B = shade, A = 0 where the
+ * elevation is nodata (transparent, no rim). Streams strip by strip with a one-row apron (or the
+ * shadow reach), so memory stays bounded whatever the DEM size. Atomic like every import.
+ * Errors: IMPORT_NO_ELEVATION (layer missing), STORE_* from the store.
+ */
+Diagnostics importTopographic(const TopographicOptions& options);
+
+}  // namespace kiosk::import

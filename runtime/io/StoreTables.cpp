@@ -1,0 +1,166 @@
+#include "runtime/io/StoreTables.h"
+
+#include "runtime/io/ImageCodec.h"
+#include "runtime/io/ScalarTileCodec.h"
+
+namespace kiosk::io {
+
+const char* layerKindName(LayerKind kind) noexcept {
+    switch (kind) {
+        case LayerKind::Elevation:
+            return "elevation";
+        case LayerKind::Imagery:
+            return "imagery";
+        case LayerKind::Sequence:
+            return "sequence_frame";
+    }
+    return "elevation";
+}
+
+std::optional<LayerKind> parseLayerKind(const std::string& name) noexcept {
+    if (name == "elevation") return LayerKind::Elevation;
+    if (name == "imagery") return LayerKind::Imagery;
+    if (name == "sequence_frame") return LayerKind::Sequence;
+    return std::nullopt;
+}
+
+std::string tileName(const std::string& table, const TileId& id) {
+    return table + "/" + std::to_string(id.level) + "/" + std::to_string(id.column) + "/" +
+           std::to_string(id.row);
+}
+
+Statement* TileQueries::statement(std::map<std::string, Statement>& cache, const std::string& key,
+                                  const std::string& sql, Diagnostics& d) {
+    auto it = cache.find(key);
+    if (it != cache.end()) {
+        it->second.reset();
+        return &it->second;
+    }
+    auto st = mDb->prepare(sql);
+    if (!st) {
+        d.append(st.diagnostics);
+        return nullptr;
+    }
+    return &cache.emplace(key, std::move(*st)).first->second;
+}
+
+Result<RasterTile> TileQueries::readScalar(const std::string& table, const ScalarMeta& meta,
+                                           const TileId& id) {
+    Diagnostics d;
+    const std::string where = tileName(table, id);
+    Statement* st = statement(
+        mScalar, table,
+        "SELECT t.tile_data, a.scale, a.offset, s.border_posts, s.min_value, s.max_value, "
+        "s.geometric_error FROM " +
+            quoteIdentifier(table) +
+            " t LEFT JOIN gpkg_2d_gridded_tile_ancillary a ON a.tpudt_name = ?1 AND "
+            "a.tpudt_id = t.id LEFT JOIN kiosk_tile_stats s ON s.table_name = ?1 AND "
+            "s.zoom_level = t.zoom_level AND s.tile_column = t.tile_column AND "
+            "s.tile_row = t.tile_row WHERE t.zoom_level = ?2 AND t.tile_column = ?3 AND "
+            "t.tile_row = ?4",
+        d);
+    if (!st) {
+        d.error("STORE_TILE_CORRUPT", mDb->path(), where, "cannot query tile table");
+        return d;
+    }
+    st->bind(1, std::string_view(table));
+    st->bindInt(2, id.level);
+    st->bindInt(3, id.column);
+    st->bindInt(4, id.row);
+    const int rc = st->step();
+    if (rc != SQLITE_ROW) {
+        if (rc == SQLITE_DONE)
+            d.error("STORE_TILE_MISSING", mDb->path(), where, "tile not in store");
+        else
+            d.add(mDb->error("STORE_TILE_CORRUPT", where, "cannot read tile"));
+        return d;
+    }
+    const auto [png, pngSize] = st->columnBlob(0);
+    const double scale = st->columnIsNull(1) ? 1.0 : st->columnDouble(1);
+    const double offset = st->columnIsNull(2) ? 0.0 : st->columnDouble(2);
+    const auto [border, borderSize] = st->columnBlob(3);
+    auto tile = decodeScalarTile(png, pngSize, border, borderSize, scale, offset, meta.dataNull,
+                                 meta.tileWidth, meta.tileHeight, where);
+    if (!tile) {
+        for (const auto& item : tile.diagnostics.items()) {
+            Diagnostic c = item;
+            c.file = mDb->path();
+            if (c.code == "IMAGE_DECODE") c.code = "STORE_TILE_CORRUPT";
+            d.add(c);
+        }
+        return d;
+    }
+    if (meta.coverageScale != 1.0 || meta.coverageOffset != 0.0)
+        for (float& v : tile->values) v = float(v * meta.coverageScale + meta.coverageOffset);
+    tile->id = id;
+    if (!st->columnIsNull(4)) {
+        tile->stats.minValue = float(st->columnDouble(4));
+        tile->stats.maxValue = float(st->columnDouble(5));
+        tile->stats.geometricError = float(st->columnDouble(6));
+    }
+    st->reset();
+    return tile;
+}
+
+Result<ImageTile> TileQueries::readImage(const std::string& table, const TileId& id) {
+    Diagnostics d;
+    const std::string where = tileName(table, id);
+    Statement* st = statement(mImage, table,
+                              "SELECT tile_data FROM " + quoteIdentifier(table) +
+                                  " WHERE zoom_level = ?1 AND tile_column = ?2 AND tile_row = ?3",
+                              d);
+    if (!st) {
+        d.error("STORE_TILE_CORRUPT", mDb->path(), where, "cannot query tile table");
+        return d;
+    }
+    st->bindInt(1, id.level);
+    st->bindInt(2, id.column);
+    st->bindInt(3, id.row);
+    const int rc = st->step();
+    if (rc != SQLITE_ROW) {
+        if (rc == SQLITE_DONE)
+            d.error("STORE_TILE_MISSING", mDb->path(), where, "tile not in store");
+        else
+            d.add(mDb->error("STORE_TILE_CORRUPT", where, "cannot read tile"));
+        return d;
+    }
+    const auto [data, size] = st->columnBlob(0);
+    auto img = decodeRgba8(data, size, where);
+    st->reset();
+    if (!img) {
+        d.error("STORE_TILE_CORRUPT", mDb->path(), where,
+                img.diagnostics.firstError() ? img.diagnostics.firstError()->message
+                                             : "cannot decode tile");
+        return d;
+    }
+    ImageTile t;
+    t.id = id;
+    t.width = img->width;
+    t.height = img->height;
+    t.rgba = std::move(img->samples8);
+    return t;
+}
+
+std::optional<TileStats> TileQueries::stats(const std::string& table, const TileId& id) {
+    if (!mStats.valid()) {
+        auto st = mDb->prepare(
+            "SELECT min_value, max_value, geometric_error FROM kiosk_tile_stats WHERE "
+            "table_name = ?1 AND zoom_level = ?2 AND tile_column = ?3 AND tile_row = ?4");
+        if (!st) return std::nullopt;
+        mStats = std::move(*st);
+    }
+    mStats.reset();
+    mStats.bind(1, std::string_view(table));
+    mStats.bindInt(2, id.level);
+    mStats.bindInt(3, id.column);
+    mStats.bindInt(4, id.row);
+    if (mStats.step() != SQLITE_ROW) return std::nullopt;
+    TileStats s;
+    s.minValue = float(mStats.columnDouble(0));
+    s.maxValue = float(mStats.columnDouble(1));
+    s.geometricError = float(mStats.columnDouble(2));
+    mStats.reset();
+    return s;
+}
+
+}  // namespace kiosk::io

@@ -1,0 +1,67 @@
+#pragma once
+
+#include "runtime/core/Result.h"
+#include "runtime/io/SqliteDb.h"
+#include "runtime/io/StoreTypes.h"
+
+#include <map>
+#include <optional>
+#include <string>
+
+// Table and extension names of the geokiosk store (docs/store-format.md) and the tile queries
+// shared by StoreReader and StoreWriter.
+namespace kiosk::io {
+
+inline constexpr const char* kGridTable = "kiosk_grid";
+inline constexpr const char* kLayersTable = "kiosk_layers";
+inline constexpr const char* kTileStatsTable = "kiosk_tile_stats";
+inline constexpr const char* kSequencesTable = "kiosk_sequences";
+inline constexpr const char* kFramesTable = "kiosk_sequence_frames";
+inline constexpr const char* kStoreExtension = "kiosk_store";
+inline constexpr const char* kTileStatsExtension = "kiosk_tile_stats";
+inline constexpr const char* kSequencesExtension = "kiosk_sequences";
+inline constexpr const char* kCoverageExtension = "gpkg_2d_gridded_coverage";
+inline constexpr std::int32_t kGpkgApplicationId = 0x47504B47;  // 'GPKG'
+inline constexpr int kGpkgUserVersion = 10300;
+
+/** @brief Layer kind as stored in kiosk_layers.kind. */
+const char* layerKindName(LayerKind kind) noexcept;
+std::optional<LayerKind> parseLayerKind(const std::string& name) noexcept;
+
+/**
+ * @brief Reads tiles of one connection with cached prepared statements (one per table).
+ * Not thread-safe (one per connection). Table names must come from kiosk_layers.
+ */
+class TileQueries {
+public:
+    explicit TileQueries(SqliteDb& db) : mDb(&db) {}
+
+    struct ScalarMeta {
+        int tileWidth = 256;
+        int tileHeight = 256;
+        double dataNull = 65535;
+        double coverageScale = 1.0;
+        double coverageOffset = 0.0;
+    };
+
+    /** @brief Decode the posts of a scalar tile; STORE_TILE_MISSING / STORE_TILE_CORRUPT. */
+    Result<RasterTile> readScalar(const std::string& table, const ScalarMeta& meta,
+                                  const TileId& id);
+    /** @brief Decode an imagery tile to RGBA8. */
+    Result<ImageTile> readImage(const std::string& table, const TileId& id);
+    /** @brief Stats row, nullopt if absent. */
+    std::optional<TileStats> stats(const std::string& table, const TileId& id);
+
+private:
+    Statement* statement(std::map<std::string, Statement>& cache, const std::string& key,
+                         const std::string& sql, Diagnostics& d);
+
+    SqliteDb* mDb;
+    std::map<std::string, Statement> mScalar, mImage;
+    Statement mStats;
+};
+
+/** @brief `table/level/column/row`, the `where` of tile diagnostics. */
+std::string tileName(const std::string& table, const TileId& id);
+
+}  // namespace kiosk::io

@@ -1,0 +1,103 @@
+#pragma once
+
+#include "runtime/core/Result.h"
+#include "runtime/io/ScalarTileCodec.h"
+#include "runtime/io/SqliteDb.h"
+#include "runtime/io/StoreTables.h"
+#include "runtime/io/StoreTypes.h"
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace kiosk::io {
+
+/** @brief What a new scalar (2D gridded coverage) tile table holds. */
+struct ScalarLayerSpec {
+    std::string table;  ///< [A-Za-z_][A-Za-z0-9_]*
+    LayerKind kind = LayerKind::Elevation;
+    std::string units = "m";
+    std::string description;
+    double scale = 0.125;          ///< quantisation step (power of two), the declared precision
+    std::optional<double> nodata;  ///< source nodata, informative
+};
+
+struct SequenceSpec {
+    std::string name;
+    std::string units;
+    std::string variable;
+    bool categorical = false;
+    std::optional<double> nodata;
+    std::string description;
+};
+
+/**
+ * @brief Writes a geokiosk store (GeoPackage 1.3 + our extensions) in one transaction.
+ *
+ * Used by the importer on a private temporary copy of the store, so it trades durability for
+ * speed (no journal, no fsync); the importer renames the file into place after commit().
+ * Not thread-safe: tiles are encoded on worker threads and handed to one writer thread.
+ * Never throws; every error names the file and the table/tile.
+ */
+class StoreWriter {
+public:
+    /** @brief Open (`create` = new empty file, else an existing store) and begin a transaction. */
+    static Result<std::unique_ptr<StoreWriter>> open(const std::filesystem::path& path,
+                                                     bool create);
+    ~StoreWriter();
+
+    /** @brief The store's grid once defined (read from kiosk_grid for an existing store). */
+    const std::optional<TileGrid>& grid() const noexcept { return mGrid; }
+    /** @brief Define the store's one grid and CRS (only once per store). */
+    Diagnostics defineGrid(const TileGrid& grid);
+
+    bool hasTable(const std::string& name);
+    /** @brief Table name is a plain identifier that can be a GeoPackage table. */
+    static bool validTableName(const std::string& name);
+
+    Diagnostics createScalarLayer(const ScalarLayerSpec& spec);
+    Diagnostics createImageryLayer(const std::string& table, const std::string& description);
+    Diagnostics putScalarTile(const std::string& table, const TileId& id,
+                              const EncodedScalarTile& tile);
+    Diagnostics putImageTile(const std::string& table, const TileId& id,
+                             const std::vector<std::uint8_t>& blob);
+    /** @brief Record final value range, data extent and tile count of a layer. */
+    Diagnostics finishLayer(const std::string& table, double minValue, double maxValue,
+                            double dataMinX, double dataMinY, double dataMaxX, double dataMaxY);
+
+    Diagnostics createSequence(const SequenceSpec& spec);
+    Diagnostics addSequenceFrame(const std::string& sequence, int index, double epochSeconds,
+                                 const std::string& table, double minValue, double maxValue);
+    /** @brief Frame times already stored for a sequence (to append in order). */
+    std::vector<double> sequenceTimes(const std::string& sequence);
+
+    /** @brief Read back a tile written earlier in this transaction (pyramid building). */
+    Result<RasterTile> readScalarTile(const std::string& table, const TileId& id);
+    Result<ImageTile> readImageTile(const std::string& table, const TileId& id);
+
+    /** @brief Commit, set GeoPackage header fields, close. The writer is unusable after. */
+    Diagnostics commit();
+
+    const std::string& path() const noexcept { return mDb.path(); }
+
+private:
+    StoreWriter() = default;
+    Diagnostics createSchema();
+    Diagnostics loadGrid();
+    Diagnostics insertMatrices(const std::string& table, const std::string& dataType,
+                               const std::string& description);
+    Diagnostics registerExtension(const std::string& table, const char* column,
+                                  const std::string& extension, const std::string& definition);
+
+    SqliteDb mDb;
+    std::optional<TileGrid> mGrid;
+    std::unique_ptr<TileQueries> mQueries;
+    std::map<std::string, Statement> mInsertTile;
+    Statement mInsertAncillary, mInsertStats;
+    std::map<std::string, double> mScaleOf;
+    bool mCommitted = false;
+};
+
+}  // namespace kiosk::io

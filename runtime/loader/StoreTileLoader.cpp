@@ -1,0 +1,114 @@
+#include "runtime/loader/StoreTileLoader.h"
+
+#include <string>
+#include <utility>
+
+namespace kiosk::loader {
+
+namespace {
+
+using terrain::TilePayload;
+
+std::string tileName(const std::string& layer, const TileId& id) {
+    return layer + " tile " + std::to_string(id.level) + "/" + std::to_string(id.column) + "/" +
+           std::to_string(id.row);
+}
+
+// Missing tiles are expected (sparse pyramids, data extents): Absent, not Failed.
+void markFailure(TilePayload& p, Diagnostics d) {
+    p.status =
+        d.has("STORE_TILE_MISSING") ? TilePayload::Status::Absent : TilePayload::Status::Failed;
+    p.diagnostics.append(d);
+}
+
+}  // namespace
+
+StoreTileLoader::StoreTileLoader(StoreOpener opener, std::vector<LayerBinding> layers,
+                                 terrain::TerrainOptions options)
+    : mOpener(std::move(opener)), mLayers(std::move(layers)), mOptions(options) {}
+
+void StoreTileLoader::threadStarted() {
+    if (!mOpener) {
+        mOpenDiagnostics.error("LOADER_NO_STORE", "", "", "no store opener configured");
+        return;
+    }
+    Result<std::unique_ptr<io::StoreReader>> r = mOpener();
+    mOpenDiagnostics = r.diagnostics;
+    if (r.ok() && *r)
+        mReader = std::move(*r.value);
+    else if (!mOpenDiagnostics.hasErrors())
+        mOpenDiagnostics.error("LOADER_NO_STORE", "", "", "store opener returned no reader");
+}
+
+void StoreTileLoader::threadStopping() {
+    mReader.reset();
+}
+
+TilePayload StoreTileLoader::load(const LoadRequest& request) {
+    TilePayload p;
+    p.key = request.key;
+    if (!mReader) {
+        p.status = TilePayload::Status::Failed;
+        p.diagnostics.append(mOpenDiagnostics);
+        return p;
+    }
+    if (request.key.layer >= mLayers.size()) {
+        p.status = TilePayload::Status::Failed;
+        p.diagnostics.error(
+            "LOADER_UNKNOWN_LAYER", mReader->info().path,
+            "layer index " + std::to_string(request.key.layer),
+            "no layer bound to this index (" + std::to_string(mLayers.size()) + " bound)");
+        return p;
+    }
+    const LayerBinding& layer = mLayers[request.key.layer];
+    const TileId& id = request.key.id;
+    switch (layer.kind) {
+        case io::LayerKind::Elevation: {
+            Result<io::RasterTile> r = mReader->readElevation(layer.name, id);
+            if (!r.ok()) {
+                markFailure(p, std::move(r.diagnostics));
+                return p;
+            }
+            p.diagnostics.append(r.diagnostics);
+            p.stats = r->stats;
+            Result<terrain::TileMesh> mesh =
+                terrain::buildTileMesh(*r, mReader->info().grid, mOptions, mMesher);
+            if (!mesh.ok()) {
+                p.status = TilePayload::Status::Failed;
+                for (Diagnostic d : mesh.diagnostics.items()) {
+                    d.file = mReader->info().path;
+                    d.where = tileName(layer.name, id);
+                    p.diagnostics.add(std::move(d));
+                }
+                return p;
+            }
+            p.mesh = std::move(*mesh.value);
+            break;
+        }
+        case io::LayerKind::Imagery: {
+            Result<io::ImageTile> r = mReader->readImagery(layer.name, id);
+            if (!r.ok()) {
+                markFailure(p, std::move(r.diagnostics));
+                return p;
+            }
+            p.diagnostics.append(r.diagnostics);
+            p.image = std::move(*r.value);
+            break;
+        }
+        case io::LayerKind::Sequence: {
+            Result<io::RasterTile> r =
+                mReader->readSequenceFrame(layer.name, request.key.frame, id);
+            if (!r.ok()) {
+                markFailure(p, std::move(r.diagnostics));
+                return p;
+            }
+            p.diagnostics.append(r.diagnostics);
+            p.raster = std::move(*r.value);
+            break;
+        }
+    }
+    p.status = TilePayload::Status::Ready;
+    return p;
+}
+
+}  // namespace kiosk::loader

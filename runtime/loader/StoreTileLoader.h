@@ -1,0 +1,52 @@
+#pragma once
+
+#include "runtime/core/Result.h"
+#include "runtime/io/StoreReader.h"
+#include "runtime/loader/TileLoader.h"
+#include "runtime/terrain/RtinMesher.h"
+#include "runtime/terrain/TerrainOptions.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace kiosk::loader {
+
+/** @brief Which store table a key's layer index names (index in the vector == TileKey::layer). */
+struct LayerBinding {
+    std::string name;  ///< layer table or sequence name in the store
+    io::LayerKind kind = io::LayerKind::Elevation;
+};
+
+/** @brief Opens this thread's own StoreReader, e.g. `[p] { return io::StoreReader::open(p); }`. */
+using StoreOpener = std::function<Result<std::unique_ptr<io::StoreReader>>()>;
+
+/**
+ * @brief The standard LoadFunction: reads a tile from the store with a StoreReader owned by the
+ * loader thread and, for elevation, builds its RTIN mesh with skirts (TerrainOptions must equal
+ * the selector's). Imagery gives an RGBA image, sequences a float raster of frame `key.frame`.
+ *
+ * Bad data never throws: STORE_TILE_MISSING gives an Absent payload, any other error a Failed
+ * one with the reader's diagnostics (naming layer and tile); a store that cannot be opened fails
+ * every request with the open diagnostics. Loader thread only (after construction).
+ */
+class StoreTileLoader final : public LoadFunction {
+public:
+    StoreTileLoader(StoreOpener opener, std::vector<LayerBinding> layers,
+                    terrain::TerrainOptions options);
+
+    void threadStarted() override;
+    terrain::TilePayload load(const LoadRequest& request) override;
+    void threadStopping() override;
+
+private:
+    StoreOpener mOpener;
+    std::vector<LayerBinding> mLayers;
+    terrain::TerrainOptions mOptions;
+    std::unique_ptr<io::StoreReader> mReader;
+    Diagnostics mOpenDiagnostics;
+    terrain::RtinMesher mMesher;
+};
+
+}  // namespace kiosk::loader

@@ -1,0 +1,535 @@
+#include "runtime/scene/TerrainScene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "runtime/color/TransferFunction.h"
+#include "runtime/core/Log.h"
+#include "runtime/loader/StoreTileLoader.h"
+#include "runtime/render/Textures.h"
+
+namespace kiosk::scene {
+namespace {
+
+constexpr const char* kTag = "scene::TerrainScene";
+constexpr std::uint32_t kCacheSlots = 4096;
+/** Levels whose tile statistics are read up front so the error bound holds from frame one. */
+constexpr int kPrefetchedStatLevels = 4;
+
+render::LayerKind compositeKind(config::LayerKind k) {
+    switch (k) {
+        case config::LayerKind::Thematic: return render::LayerKind::Thematic;
+        case config::LayerKind::Luminance: return render::LayerKind::Luminance;
+        case config::LayerKind::Topographic: return render::LayerKind::Topographic;
+        case config::LayerKind::Visibility: return render::LayerKind::Visibility;
+        case config::LayerKind::Data: return render::LayerKind::Data;
+        case config::LayerKind::Sequence: return render::LayerKind::Sequence;
+    }
+    return render::LayerKind::Thematic;
+}
+
+render::LayerOp compositeOp(config::OperationType t) {
+    switch (t) {
+        case config::OperationType::Opacity:
+        case config::OperationType::Replace: return render::LayerOp::Over;
+        case config::OperationType::Blend: return render::LayerOp::Blend;
+        case config::OperationType::Add: return render::LayerOp::Add;
+        case config::OperationType::Modulate: return render::LayerOp::Modulate;
+        case config::OperationType::Mask: return render::LayerOp::Mask;
+    }
+    return render::LayerOp::Over;
+}
+
+anim::Interpolation interpolationOf(const config::Layer& l, const io::SequenceInfo* seq) {
+    switch (l.interpolate) {
+        case config::SequenceInterpolation::None: return anim::Interpolation::None;
+        case config::SequenceInterpolation::Arrival: return anim::Interpolation::Categorical;
+        case config::SequenceInterpolation::Data: break;
+    }
+    // Class data (burn state) is never blended, whatever the author asked.
+    return seq && seq->categorical ? anim::Interpolation::Categorical : anim::Interpolation::Data;
+}
+
+glm::vec4 toVec4(const color::Rgba& c) { return {c.r, c.g, c.b, c.a}; }
+
+}  // namespace
+
+const char* layerStateName(LayerState s) noexcept {
+    switch (s) {
+        case LayerState::Ready: return "OK";
+        case LayerState::Degraded: return "DEGRADED";
+        case LayerState::Failed: return "FAILED";
+    }
+    return "?";
+}
+
+TerrainScene::~TerrainScene() {
+    // Join the loader before GL objects and the reader go away.
+    if (mLoader) mLoader->shutdown();
+}
+
+Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenario& scenario,
+                                                           const gl::Caps& caps) {
+    Diagnostics diags;
+    const std::string scenarioFile =
+        scenario.sourceFiles.empty() ? std::string() : scenario.sourceFiles.front().string();
+    auto storeIt = scenario.stores.find(scenario.terrain.store);
+    if (storeIt == scenario.stores.end()) {
+        diags.error("SCENE_NO_STORE", scenarioFile, scenario.terrain.pointer + "/store",
+                    "terrain store \"" + scenario.terrain.store + "\" is not declared under /stores");
+        return diags;
+    }
+    std::unique_ptr<TerrainScene> s(new TerrainScene());
+    s->mScenario = &scenario;
+    s->mStorePath = storeIt->second.path;
+    auto reader = io::StoreReader::open(s->mStorePath);
+    if (!reader) return reader.diagnostics;
+    s->mReader = std::move(*reader.value);
+    const io::StoreInfo& info = s->mReader->info();
+    s->mGrid = info.grid;
+    s->mElevation = info.findLayer(scenario.terrain.elevation);
+    if (!s->mElevation || s->mElevation->kind != io::LayerKind::Elevation) {
+        diags.error("SCENE_NO_ELEVATION", s->mStorePath.string(), scenario.terrain.pointer + "/elevation",
+                    "store has no elevation layer \"" + scenario.terrain.elevation + "\"");
+        return diags;
+    }
+    if (s->mGrid.levels.empty()) {
+        diags.error("SCENE_EMPTY_GRID", s->mStorePath.string(), "", "store has no tile matrix");
+        return diags;
+    }
+    const glm::dvec3 lo(s->mElevation->dataMinX, s->mElevation->dataMinY, s->mElevation->minValue);
+    const glm::dvec3 hi(s->mElevation->dataMaxX, s->mElevation->dataMaxY, s->mElevation->maxValue);
+    s->mBounds = {lo, hi};
+    s->mSceneOrigin = glm::dvec3(s->mGrid.minX, s->mGrid.minY, 0.0);
+
+    // Tile statistics of the upper levels (a few dozen rows) make the screen-space bound hold
+    // before any tile arrives; deeper levels fill in as payloads land.
+    const int statLevels = std::min(kPrefetchedStatLevels, s->mElevation->levels);
+    for (int level = 0; level < statLevels; ++level) {
+        const auto& m = s->mGrid.levels[std::size_t(level)];
+        for (int row = 0; row < m.matrixHeight; ++row)
+            for (int col = 0; col < m.matrixWidth; ++col) {
+                const TileId id{level, col, row};
+                if (auto st = s->mReader->tileStats(s->mElevation->name, id))
+                    s->mStats.set(id, *st);
+                else
+                    s->mStats.markAbsent(id);
+            }
+    }
+
+    s->mOptions.tauGeom = scenario.terrain.tauGeom;
+    s->mOptions.tauTex = scenario.terrain.tauTex;
+    io::TileStats rootStats;
+    if (s->mStats.lookup({0, 0, 0}, rootStats) == terrain::TileState::Known)
+        s->mOptions.neighbourErrorBound =
+            rootStats.geometricError + s->mOptions.tinTolerance(rootStats.geometricError);
+
+    // The layer stack: key layer 0 is the elevation mesh; every textured layer gets its own.
+    std::vector<loader::LayerBinding> bindings{{s->mElevation->name, io::LayerKind::Elevation}};
+    terrain::SelectorSetup setup;
+    setup.grid = s->mGrid;
+    setup.geometryLayer = 0;
+    setup.geometryMaxLevel = s->mElevation->levels - 1;
+    render::CompositeProgramDesc desc;
+    s->mLayers.reserve(scenario.layers.size());
+    s->mStatus.push_back({"terrain", LayerState::Ready, {}, 0});
+    s->mKeyLayerStatus.push_back(0);
+    for (const auto& cl : scenario.layers) {
+        if (!cl.enabled) continue;
+        LayerStatus status{cl.id, LayerState::Ready, {}, 0};
+        StackLayer sl;
+        sl.config = &cl;
+        sl.strength = float(cl.operation.opacity *
+                            (cl.operation.type == config::OperationType::Add ? cl.operation.weight : 1.0));
+        sl.nodataAs = cl.nodataAs ? std::optional<float>(float(*cl.nodataAs)) : std::nullopt;
+        render::CompositeLayer comp{compositeKind(cl.kind), compositeOp(cl.operation.type), -1, false};
+        const bool sameStore = cl.source.store.empty() || cl.source.store == scenario.terrain.store;
+        std::string problem;
+        if (!sameStore) {
+            problem = "source store \"" + cl.source.store +
+                      "\" differs from the terrain store; layers must share the terrain's grid";
+        } else if (cl.kind == config::LayerKind::Data && cl.source.sequence.empty() &&
+                   cl.source.layer == s->mElevation->name) {
+            comp.fromElevation = true;  // hypsometric tint from the mesh itself
+        } else if (cl.kind == config::LayerKind::Sequence || cl.kind == config::LayerKind::Data) {
+            sl.sequence = info.findSequence(cl.source.sequence);
+            if (!sl.sequence) {
+                problem = "store has no sequence \"" + cl.source.sequence + "\"";
+            } else {
+                sl.keyLayer = int(bindings.size());
+                bindings.push_back({sl.sequence->name, io::LayerKind::Sequence});
+                sl.interpolation = cl.kind == config::LayerKind::Data ? anim::Interpolation::None
+                                                                      : interpolationOf(cl, sl.sequence);
+                const int maxLevel = sl.sequence->levels - 1;
+                sl.specA = int(setup.textures.size());
+                setup.textures.push_back({std::uint16_t(sl.keyLayer), 0, maxLevel});
+                if (cl.kind == config::LayerKind::Sequence) {
+                    sl.specB = int(setup.textures.size());
+                    setup.textures.push_back({std::uint16_t(sl.keyLayer), 0, maxLevel});
+                }
+            }
+        } else {
+            const io::LayerInfo* li = info.findLayer(cl.source.layer);
+            if (!li || li->kind != io::LayerKind::Imagery) {
+                problem = "store has no imagery layer \"" + cl.source.layer + "\"";
+            } else {
+                sl.keyLayer = int(bindings.size());
+                bindings.push_back({li->name, io::LayerKind::Imagery});
+                sl.specA = int(setup.textures.size());
+                setup.textures.push_back({std::uint16_t(sl.keyLayer), 0, li->levels - 1});
+            }
+        }
+        if (!problem.empty()) {
+            status.state = LayerState::Failed;
+            status.message = s->mStorePath.string() + ": " + cl.pointer + ": " + problem;
+            KIOSK_LOG_WARN(kTag, "layer \"%s\" FAILED: %s", cl.id.c_str(), status.message.c_str());
+            s->mStatus.push_back(status);
+            continue;
+        }
+        if (comp.kind == render::LayerKind::Data || comp.kind == render::LayerKind::Sequence) {
+            const auto* tf = scenario.findTransfer(cl.transfer);
+            SceneLut lut;
+            lut.name = cl.transfer;
+            lut.function = tf ? &tf->function : nullptr;
+            if (!tf) {
+                status.state = LayerState::Degraded;
+                status.message = cl.pointer + "/transfer: unknown transfer function \"" +
+                                 cl.transfer + "\"; drawn in grey";
+            }
+            s->mLuts.push_back(std::move(lut));
+            ++desc.lutCount;
+        }
+        if (sl.keyLayer >= 0) {
+            s->mKeyLayerStatus.resize(std::size_t(sl.keyLayer) + 1, -1);
+            s->mKeyLayerStatus[std::size_t(sl.keyLayer)] = int(s->mStatus.size());
+        }
+        s->mStatus.push_back(status);
+        desc.layers.push_back(comp);
+        s->mLayers.push_back(std::move(sl));
+    }
+    // Blend references and lenses name layers by id; resolve to stack indices.
+    auto stackIndex = [&](const std::string& id) {
+        for (std::size_t i = 0; i < s->mLayers.size(); ++i)
+            if (s->mLayers[i].config->id == id) return int(i);
+        return -1;
+    };
+    for (std::size_t i = 0; i < s->mLayers.size(); ++i) {
+        if (desc.layers[i].op != render::LayerOp::Blend) continue;
+        desc.layers[i].visibilityLayer = stackIndex(s->mLayers[i].config->operation.visibility);
+        if (desc.layers[i].visibilityLayer < 0) desc.layers[i].op = render::LayerOp::Over;
+    }
+    for (const auto& lens : scenario.lenses) {
+        render::CompositeLens cl{lens.kind == config::LensKind::Highlight ? render::LensKind::Highlight
+                                                                          : render::LensKind::Visibility,
+                                 stackIndex(lens.inside), stackIndex(lens.outside)};
+        desc.lenses.push_back(cl);
+    }
+
+    auto renderer = render::TerrainRenderer::create(desc, caps.maxTextureUnits);
+    if (!renderer) return renderer.diagnostics;
+    s->mRenderer = std::make_unique<render::TerrainRenderer>(std::move(*renderer.value));
+    for (std::size_t k = 0; k < s->mLuts.size(); ++k) {
+        SceneLut& lut = s->mLuts[k];
+        render::LutBinding b;
+        if (lut.function) {
+            auto rgba = color::buildLut(*lut.function, color::kMinLutSize);
+            lut.size = int(rgba.size() / 4);
+            lut.texture = render::makeLutTexture(lut.size, rgba.data());
+            b.domainMin = float(lut.function->domainMin);
+            b.domainMax = float(lut.function->domainMax);
+            b.nodata = toVec4(lut.function->nodata);
+            b.below = toVec4(lut.function->below);
+            b.above = toVec4(lut.function->above);
+        } else {
+            const std::uint8_t grey[8] = {40, 40, 40, 255, 230, 230, 230, 255};
+            lut.size = 2;
+            lut.texture = render::makeLutTexture(2, grey);
+        }
+        b.texture = lut.texture.id();
+        b.size = lut.size;
+        s->mRenderer->setLut(int(k), b);
+    }
+    // Without a hypsometric layer the terrain base is a neutral grey.
+    const std::uint8_t base[8] = {200, 200, 195, 255, 200, 200, 195, 255};
+    s->mRenderer->setElevationLut(2, base, 0.0f, 1.0f);
+
+    terrain::CacheBudget budget{std::size_t(std::max<std::int64_t>(scenario.terrain.cacheBytes, 1 << 20)),
+                                std::size_t(std::max<std::int64_t>(scenario.terrain.gpuBytes, 1 << 20))};
+    s->mCache = std::make_unique<terrain::TerrainTileCache>(budget, kCacheSlots);
+    s->mResidency = std::make_unique<terrain::CacheResidency>(*s->mCache, true);
+    s->mGpu.resize(kCacheSlots);
+    setup.options = s->mOptions;
+    setup.heightMin = s->mElevation->minValue;
+    setup.heightMax = s->mElevation->maxValue;
+    if (Diagnostics d = s->mSelector.configure(setup); d.hasErrors()) return d;
+    // The prefetch selector looks at a future camera; it neither pins tiles nor needs GPU copies.
+    s->mPrefetchSelector.configure(setup);
+    s->mPrefetchResidency = std::make_unique<terrain::CacheResidency>(*s->mCache, false, false);
+    const auto path = s->mStorePath;
+    auto fn = std::make_unique<loader::StoreTileLoader>(
+        [path] { return io::StoreReader::open(path); }, bindings, s->mOptions);
+    s->mLoader = std::make_unique<loader::TileLoader>(loader::LoaderOptions{}, std::move(fn));
+    return s;
+}
+
+void TerrainScene::noteFailure(const terrain::TilePayload& payload) {
+    const std::size_t k = payload.key.layer;
+    const int idx = k < mKeyLayerStatus.size() ? mKeyLayerStatus[k] : -1;
+    if (idx < 0) return;
+    LayerStatus& st = mStatus[std::size_t(idx)];
+    ++st.failedTiles;
+    if (st.state == LayerState::Ready) st.state = LayerState::Degraded;
+    const Diagnostic* d = payload.diagnostics.firstError();
+    st.message = std::to_string(st.failedTiles) + " tile(s) unreadable" +
+                 (d ? ", last: " + d->format() : std::string());
+    // Rate limiting is per tile: each bad tile is reported once and then cached as Failed.
+    KIOSK_LOG_WARN(kTag, "%s", st.message.c_str());
+}
+
+void TerrainScene::uploadPayload(terrain::TileHandle handle, terrain::TilePayload& payload) {
+    GpuSlot& slot = mGpu[handle.index()];
+    slot = GpuSlot{};
+    std::size_t bytes = 0;
+    if (payload.mesh) {
+        bytes = payload.mesh->byteSize();
+        if (!mCache->reserveGpu(handle, bytes)) return;
+        slot.mesh = render::GpuMesh::upload(payload.mesh->vertices.data(), payload.mesh->vertices.size(),
+                                            payload.mesh->indices.data(), payload.mesh->indices.size());
+        // The GPU copy is what is drawn; the CPU vertices are not needed again.
+        payload.mesh->vertices = {};
+        payload.mesh->indices = {};
+    } else if (payload.image) {
+        bytes = payload.image->rgba.size() * 4 / 3;  // with mipmaps
+        if (!mCache->reserveGpu(handle, bytes)) return;
+        slot.texture = render::makeRgbaTexture(payload.image->width, payload.image->height,
+                                               payload.image->rgba.data(), true);
+        payload.image->rgba = {};
+    } else if (payload.raster) {
+        const auto& r = *payload.raster;
+        bytes = std::size_t(r.postsX) * std::size_t(r.postsY) * 4;  // RG16F
+        if (!mCache->reserveGpu(handle, bytes)) return;
+        std::optional<float> nodataAs;
+        for (const auto& l : mLayers)
+            if (l.keyLayer == int(payload.key.layer)) nodataAs = l.nodataAs;
+        slot.texture = render::makeScalarTexture(r.postsX, r.postsY, r.values.data(), nodataAs);
+        slot.postsX = r.postsX;
+        slot.postsY = r.postsY;
+        payload.raster->values = {};
+    }
+    slot.bytes = bytes;
+    mCache->setCpuBytes(handle, payload.byteSize());
+    ++mFrame.uploads;
+}
+
+void TerrainScene::drainCompletions() {
+    loader::LoadResult result;
+    // The budget is checked before each pop: what stays in the loader's completion ring is
+    // uploaded next frame, so a burst of arrivals never makes one long frame.
+    while (mBudget.allow(0) && mLoader->tryPop(result)) {
+        terrain::TilePayload& p = result.payload;
+        if (p.key.layer == 0) {
+            if (p.stats) mStats.set(p.key.id, *p.stats);
+            if (p.status == terrain::TilePayload::Status::Absent) mStats.markAbsent(p.key.id);
+        }
+        if (p.status == terrain::TilePayload::Status::Failed) noteFailure(p);
+        const terrain::TileKey key = p.key;
+        const std::size_t cpu = p.byteSize();
+        terrain::TileHandle h = mCache->insert(key, std::move(p), cpu);
+        if (!h.valid()) continue;  // does not fit the budget this frame; requested again later
+        terrain::TilePayload* stored = mCache->get(h);
+        if (stored->status == terrain::TilePayload::Status::Ready) {
+            uploadPayload(h, *stored);
+            mBudget.consume(mGpu[h.index()].bytes);
+        }
+    }
+}
+
+void TerrainScene::releaseEvicted() {
+    for (const auto& e : mCache->evicted())
+        if (e.handle.index() < mGpu.size()) mGpu[e.handle.index()] = GpuSlot{};
+    mCache->clearEvicted();
+}
+
+bool TerrainScene::sequenceFrameComplete(const StackLayer& layer, bool useA) const {
+    const int spec = useA ? layer.specA : layer.specB;
+    if (!mSelection || spec < 0) return false;
+    for (const auto& t : mSelection->tiles) {
+        if (int(t.textureCount) <= spec) return false;
+        const auto& a = mSelection->textures[t.firstTexture + std::uint32_t(spec)];
+        if (!a.handle.valid() || a.fromAncestor) return false;
+    }
+    return true;
+}
+
+void TerrainScene::update(const math::Camera& camera, double time) {
+    ++mFrameNumber;
+    mFrame = {};
+    mCache->beginFrame(mFrameNumber);
+    mBudget.beginFrame();
+    releaseEvicted();
+    drainCompletions();
+
+    bool reselect = false;
+    std::vector<anim::FrameBracket> wanted(mLayers.size());
+    for (std::size_t i = 0; i < mLayers.size(); ++i) {
+        StackLayer& l = mLayers[i];
+        if (!l.sequence || l.specA < 0) continue;
+        wanted[i] = anim::bracketFrames(l.sequence->frameTimes, time, l.interpolation);
+        mSelector.setTextureFrame(std::size_t(l.specA), std::int32_t(wanted[i].i0));
+        if (l.specB >= 0) mSelector.setTextureFrame(std::size_t(l.specB), std::int32_t(wanted[i].i1));
+    }
+    mSelection = &mSelector.select(camera, mStats, *mResidency);
+    mFrame.requests = std::uint32_t(mSelection->requests.size());
+    mLoader->submit(mSelection->requests);
+    const bool requestsPending = !mSelection->requests.empty();
+
+    for (std::size_t i = 0; i < mLayers.size(); ++i) {
+        StackLayer& l = mLayers[i];
+        if (!l.sequence || l.specA < 0) continue;
+        const anim::FrameBracket& w = wanted[i];
+        const bool completeA = sequenceFrameComplete(l, true);
+        const bool completeB = l.specB < 0 || w.i1 == w.i0 ? completeA : sequenceFrameComplete(l, false);
+        for (const auto& t : mSelection->tiles) {
+            for (int spec : {l.specA, l.specB}) {
+                if (spec < 0 || int(t.textureCount) <= spec) continue;
+                const auto& a = mSelection->textures[t.firstTexture + std::uint32_t(spec)];
+                mFrame.sequenceTilesMissing += (!a.handle.valid() || a.fromAncestor) ? 1u : 0u;
+            }
+        }
+        // Atomic steps: a new frame pair becomes visible only when every tile of the view has
+        // both its frames; until then the last complete pair stays (never a mix of times).
+        l.shown = l.pair.update(w, l.sequence->frameTimes, time, [&](std::size_t frame) {
+            return frame == w.i0 ? completeA : completeB;
+        });
+        if (l.shown.hasPair && (l.shown.i0 != w.i0 || l.shown.i1 != w.i1)) {
+            mSelector.setTextureFrame(std::size_t(l.specA), std::int32_t(l.shown.i0));
+            if (l.specB >= 0) mSelector.setTextureFrame(std::size_t(l.specB), std::int32_t(l.shown.i1));
+            reselect = true;
+        }
+        if (!l.shown.hasPair) {
+            l.shown.i0 = w.i0;
+            l.shown.i1 = w.i1;
+            l.shown.alpha = w.alpha;
+        }
+        mFrame.holdingSequence = mFrame.holdingSequence || l.shown.holding;
+    }
+    if (reselect) mSelection = &mSelector.select(camera, mStats, *mResidency);
+
+    mFrame.tilesFromAncestor = mSelection->counters.tilesFromAncestor;
+    mFrame.residentBytes = mCache->cpuBytes() + mCache->gpuBytes();
+    mSettled = !requestsPending && mLoader->inFlight() == 0 && !mFrame.holdingSequence &&
+               mSelection->counters.tilesFromAncestor == 0;
+}
+
+void TerrainScene::prefetch(const math::Camera& futureCamera) {
+    // Same frames as the view being drawn, so the tiles a camera path will need arrive first.
+    for (const auto& l : mLayers) {
+        if (!l.sequence || l.specA < 0) continue;
+        mPrefetchSelector.setTextureFrame(std::size_t(l.specA), std::int32_t(l.shown.i0));
+        if (l.specB >= 0) mPrefetchSelector.setTextureFrame(std::size_t(l.specB), std::int32_t(l.shown.i1));
+    }
+    const auto& sel = mPrefetchSelector.select(futureCamera, mStats, *mPrefetchResidency);
+    mPrefetch.assign(sel.requests.begin(), sel.requests.end());
+    // Next frame pairs of each sequence for the tiles on screen now: the playhead's deadline.
+    if (mSelection) {
+        for (const auto& l : mLayers) {
+            if (!l.sequence || l.specA < 0) continue;
+            const std::size_t nextFrame = std::min(l.shown.i1 + 1, l.sequence->frameTimes.size() - 1);
+            for (const auto& t : mSelection->tiles) {
+                if (int(t.textureCount) <= l.specA) continue;
+                terrain::TileKey key = mSelection->textures[t.firstTexture + std::uint32_t(l.specA)].wanted;
+                key.frame = std::int32_t(nextFrame);
+                if (!mCache->find(key).valid()) mPrefetch.push_back({key, 0.5});
+            }
+        }
+    }
+    mLoader->prefetch(mPrefetch);
+}
+
+render::LayerBinding TerrainScene::bindingFor(const terrain::TextureAssignment& a, int postsX,
+                                              int postsY) const {
+    render::LayerBinding b;
+    b.valid = a.handle.valid();
+    if (!b.valid) return b;
+    const GpuSlot& slot = mGpu[a.handle.index()];
+    b.texture = slot.texture.id();
+    b.valid = b.texture != 0;
+    b.west = a.boundsMin.x;
+    b.north = a.boundsMax.y;
+    b.width = a.boundsMax.x - a.boundsMin.x;
+    b.height = a.boundsMax.y - a.boundsMin.y;
+    if (postsX > 1 && postsY > 1) {
+        // Raster posts sit at pixel centres and include the east/south neighbours' first
+        // column/row: texel i's centre is at west + (i + 0.5) px, so the texture spans
+        // postsX pixels starting at the tile's west edge.
+        b.width *= double(postsX) / double(postsX - 1);
+        b.height *= double(postsY) / double(postsY - 1);
+    }
+    return b;
+}
+
+void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& style) {
+    if (!mSelection) return;
+    auto& r = *mRenderer;
+    r.counters().clear();
+    r.begin(camera, mSceneOrigin, style);
+    for (const auto& t : mSelection->tiles) {
+        if (!t.handle.valid()) continue;
+        const GpuSlot& g = mGpu[t.handle.index()];
+        const terrain::TilePayload* p = mCache->get(t.handle);
+        if (!g.mesh.valid() || !p || !p->mesh) continue;
+        for (std::size_t li = 0; li < mLayers.size(); ++li) {
+            const StackLayer& l = mLayers[li];
+            render::LayerBinding b;
+            if (l.specA < 0) {
+                b.valid = true;  // drawn from the mesh's own elevation
+            } else if (int(t.textureCount) > l.specA) {
+                const auto& a = mSelection->textures[t.firstTexture + std::uint32_t(l.specA)];
+                const GpuSlot& ta = a.handle.valid() ? mGpu[a.handle.index()] : g;
+                b = bindingFor(a, ta.postsX, ta.postsY);
+                if (l.specB >= 0 && int(t.textureCount) > l.specB) {
+                    const auto& bb = mSelection->textures[t.firstTexture + std::uint32_t(l.specB)];
+                    b.textureB = bb.handle.valid() ? mGpu[bb.handle.index()].texture.id() : b.texture;
+                    b.alpha = float(l.shown.alpha);
+                }
+            }
+            b.strength = l.strength;
+            r.setLayer(int(li), b);
+        }
+        if (t.clipped)
+            r.draw(g.mesh, p->mesh->origin, t.fromAncestor, t.clipMin, t.clipMax);
+        else
+            r.draw(g.mesh, p->mesh->origin, t.fromAncestor);
+    }
+    r.end();
+    mFrame.tilesDrawn = r.counters().tilesDrawn;
+    mFrame.triangles = r.counters().triangles;
+}
+
+math::Viewpoint TerrainScene::overviewViewpoint() const {
+    const glm::dvec3 c = mBounds.center();
+    const double size = std::max(mBounds.max.x - mBounds.min.x, mBounds.max.y - mBounds.min.y);
+    math::Viewpoint vp;
+    vp.target = glm::dvec3(c.x, c.y, mBounds.min.z + (mBounds.max.z - mBounds.min.z) * 0.3);
+    vp.headingDeg = 20.0;
+    vp.pitchDeg = -40.0;
+    vp.range = size * 1.1;
+    return vp;
+}
+
+std::vector<double> TerrainScene::sequenceKeyTimes() const {
+    std::vector<double> times;
+    for (const auto& l : mLayers)
+        if (l.sequence) times.insert(times.end(), l.sequence->frameTimes.begin(), l.sequence->frameTimes.end());
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end()), times.end());
+    return times;
+}
+
+const SceneLut* TerrainScene::lut(const std::string& transferName) const {
+    for (const auto& l : mLuts)
+        if (l.name == transferName && l.function) return &l;
+    return nullptr;
+}
+
+}  // namespace kiosk::scene

@@ -1,0 +1,154 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "config/Scenario.h"
+#include "runtime/anim/FrameBracket.h"
+#include "runtime/anim/VisiblePair.h"
+#include "runtime/core/Result.h"
+#include "runtime/gl/Context.h"
+#include "runtime/gl/GlObject.h"
+#include "runtime/io/StoreReader.h"
+#include "runtime/loader/TileLoader.h"
+#include "runtime/loader/UploadBudget.h"
+#include "runtime/math/Camera.h"
+#include "runtime/math/Frustum.h"
+#include "runtime/render/GpuMesh.h"
+#include "runtime/render/TerrainRenderer.h"
+#include "runtime/terrain/TilePayload.h"
+#include "runtime/terrain/TileSelector.h"
+#include "runtime/terrain/TileStatsTable.h"
+
+namespace kiosk::scene {
+
+/** @brief osgEarth-style layer status: a bad layer degrades itself, never the process. */
+enum class LayerState { Ready, Degraded, Failed };
+const char* layerStateName(LayerState s) noexcept;
+
+struct LayerStatus {
+    std::string id;
+    LayerState state = LayerState::Ready;
+    std::string message;  ///< why, naming file/table/tile
+    std::uint32_t failedTiles = 0;
+};
+
+/** @brief What one frame did (feeds `--stats` and the status overlay). */
+struct SceneFrameInfo {
+    std::uint32_t tilesDrawn = 0;
+    std::uint64_t triangles = 0;
+    std::uint32_t tilesFromAncestor = 0;
+    std::uint32_t sequenceTilesMissing = 0;  ///< wanted sequence tiles not resident
+    std::uint64_t residentBytes = 0;         ///< CPU + GPU bytes held by the tile cache
+    std::uint32_t requests = 0;
+    std::uint32_t uploads = 0;
+    bool holdingSequence = false;  ///< a sequence shows an older complete frame pair
+};
+
+/** @brief A transfer function ready for the GPU and the legend. */
+struct SceneLut {
+    std::string name;
+    const color::TransferFunction* function = nullptr;
+    gl::Texture texture;
+    int size = 0;
+};
+
+/**
+ * @brief The running terrain of one scenario: the store, tile selection with the screen-space
+ * error guarantee, the loader thread, the tile cache and its GPU copies, the layer stack and
+ * the sequences' atomic frame pairs.
+ *
+ * Render thread only (owns GL objects); the loader thread it starts reads the store with its own
+ * connection. Per frame: update() then draw(). Never blocks on disk: what is not resident is
+ * drawn from the nearest resident ancestor.
+ */
+class TerrainScene {
+public:
+    static Result<std::unique_ptr<TerrainScene>> create(const config::Scenario& scenario,
+                                                        const gl::Caps& caps);
+    ~TerrainScene();
+    TerrainScene(const TerrainScene&) = delete;
+    TerrainScene& operator=(const TerrainScene&) = delete;
+
+    /**
+     * @brief Select tiles for `camera` at data time `time`, submit requests, upload what arrived
+     * within the per-frame budget, and pick each sequence's visible frame pair.
+     */
+    void update(const math::Camera& camera, double time);
+    /** @brief Request tiles for a future view (camera path prefetch); low priority. */
+    void prefetch(const math::Camera& futureCamera);
+    void draw(const math::Camera& camera, const render::TerrainStyle& style);
+
+    /** @brief Nothing wanted for the current view is missing or in flight (render waits). */
+    bool settled() const noexcept { return mSettled; }
+    const SceneFrameInfo& frameInfo() const noexcept { return mFrame; }
+    const std::vector<LayerStatus>& layerStatus() const noexcept { return mStatus; }
+
+    /** @brief World bounds of the data: extent and min/max elevation. */
+    const math::Aabb& bounds() const noexcept { return mBounds; }
+    /** @brief A view of the whole extent from the south-west, for scenarios without one. */
+    math::Viewpoint overviewViewpoint() const;
+    /** @brief Frame times of the scenario's sequences (clock key frames). */
+    std::vector<double> sequenceKeyTimes() const;
+    const SceneLut* lut(const std::string& transferName) const;
+    const io::StoreInfo& storeInfo() const { return mReader->info(); }
+
+private:
+    TerrainScene() = default;
+    struct GpuSlot {
+        render::GpuMesh mesh;
+        gl::Texture texture;
+        std::size_t bytes = 0;
+        int postsX = 0, postsY = 0;  ///< raster textures: size in posts
+    };
+    /** @brief One composite layer of the stack and where its textures come from. */
+    struct StackLayer {
+        const config::Layer* config = nullptr;
+        int keyLayer = -1;         ///< TileKey::layer of its payloads (-1: no texture)
+        int specA = -1, specB = -1;  ///< indices into the selector's texture specs
+        const io::SequenceInfo* sequence = nullptr;
+        anim::Interpolation interpolation = anim::Interpolation::Data;
+        anim::VisiblePair pair;
+        anim::DisplayPair shown;
+        float strength = 1.0f;
+        std::optional<float> nodataAs;
+    };
+
+    void drainCompletions();
+    void uploadPayload(terrain::TileHandle handle, terrain::TilePayload& payload);
+    void releaseEvicted();
+    void noteFailure(const terrain::TilePayload& payload);
+    bool sequenceFrameComplete(const StackLayer& layer, bool useA) const;
+    render::LayerBinding bindingFor(const terrain::TextureAssignment& a, int postsX, int postsY) const;
+
+    const config::Scenario* mScenario = nullptr;
+    std::unique_ptr<io::StoreReader> mReader;
+    std::filesystem::path mStorePath;
+    io::TileGrid mGrid;
+    const io::LayerInfo* mElevation = nullptr;
+    terrain::TerrainOptions mOptions;
+    std::unique_ptr<terrain::TerrainTileCache> mCache;
+    std::unique_ptr<terrain::CacheResidency> mResidency;
+    terrain::TileSelector mSelector;
+    terrain::TileSelector mPrefetchSelector;
+    std::unique_ptr<terrain::CacheResidency> mPrefetchResidency;
+    terrain::TileStatsTable mStats;
+    std::unique_ptr<loader::TileLoader> mLoader;
+    loader::UploadBudget mBudget{8u << 20, 6.0};
+    std::vector<GpuSlot> mGpu;
+    std::vector<StackLayer> mLayers;
+    std::vector<SceneLut> mLuts;
+    std::vector<LayerStatus> mStatus;
+    std::vector<int> mKeyLayerStatus;  ///< key layer -> index into mStatus
+    std::unique_ptr<render::TerrainRenderer> mRenderer;
+    std::vector<terrain::TileRequest> mPrefetch;
+    const terrain::SelectionResult* mSelection = nullptr;
+    math::Aabb mBounds;
+    glm::dvec3 mSceneOrigin{0.0};
+    SceneFrameInfo mFrame;
+    std::uint64_t mFrameNumber = 0;
+    bool mSettled = false;
+};
+
+}  // namespace kiosk::scene

@@ -1,0 +1,304 @@
+#include "runtime/terrain/TileSelector.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+namespace kiosk::terrain {
+
+namespace {
+
+// Requests for tiles with nothing drawable in their whole ancestry come first: a hole is worse
+// than any blur.
+constexpr double kNothingDrawnPriority = 1e9;
+
+TileId ancestorAt(const TileId& id, int level) {
+    TileId a = id;
+    while (a.level > level) a = a.parent();
+    return a;
+}
+
+}  // namespace
+
+Diagnostics TileSelector::configure(SelectorSetup setup) {
+    Diagnostics diags;
+    const auto& levels = setup.grid.levels;
+    for (std::size_t l = 0; l < levels.size(); ++l) {
+        const io::TileMatrix& m = levels[l];
+        std::string why;
+        if (m.matrixWidth < 1 || m.matrixHeight < 1 || !(m.pixelXSize > 0) || !(m.pixelYSize > 0) ||
+            m.tileWidth < 1 || m.tileHeight < 1) {
+            why = "empty matrix or non-positive pixel size";
+        } else if (l > 0) {
+            const io::TileMatrix& p = levels[l - 1];
+            auto halves = [](double fine, double coarse) {
+                return std::abs(fine * 2.0 - coarse) <= 1e-6 * coarse;
+            };
+            if (!halves(m.pixelXSize, p.pixelXSize) || !halves(m.pixelYSize, p.pixelYSize) ||
+                m.tileWidth != p.tileWidth || m.tileHeight != p.tileHeight)
+                why = "pixel size is not half of level " + std::to_string(l - 1) + "'s";
+            else if (m.matrixWidth > 2 * p.matrixWidth || m.matrixHeight > 2 * p.matrixHeight)
+                why = "more than twice the tiles of level " + std::to_string(l - 1);
+        }
+        if (!why.empty()) {
+            diags.error("TERRAIN_GRID_NOT_QUADTREE", "", "tile matrix level " + std::to_string(l),
+                        why);
+            break;
+        }
+    }
+    if (diags.hasErrors()) setup.grid.levels.clear();
+    mSetup = std::move(setup);
+    const int gridMax = mSetup.grid.maxLevel();
+    mSetup.geometryMaxLevel = std::clamp(mSetup.geometryMaxLevel, 0, std::max(0, gridMax));
+    const int textureCap =
+        mSetup.geometryMaxLevel + std::max(0, mSetup.options.textureLevelsBeyondGeometry);
+    mMaxDepth = mSetup.geometryMaxLevel;
+    for (auto& t : mSetup.textures) {
+        t.maxLevel = std::clamp(t.maxLevel, 0, std::min(std::max(0, gridMax), textureCap));
+        mMaxDepth = std::max(mMaxDepth, t.maxLevel);
+    }
+    std::size_t roots = 0;
+    if (!mSetup.grid.levels.empty())
+        roots = std::size_t(mSetup.grid.levels[0].matrixWidth) *
+                std::size_t(std::max(0, mSetup.grid.levels[0].matrixHeight));
+    mRootRequested.assign(roots * (1 + mSetup.textures.size()), 0);
+    mResult = SelectionResult{};
+    return diags;
+}
+
+void TileSelector::setTextureFrame(std::size_t textureIndex, std::int32_t frame) {
+    if (textureIndex < mSetup.textures.size()) mSetup.textures[textureIndex].frame = frame;
+}
+
+bool TileSelector::inMatrix(const TileId& id) const {
+    if (id.level < 0 || id.level > mSetup.grid.maxLevel()) return false;
+    const io::TileMatrix& m = mSetup.grid.levels[std::size_t(id.level)];
+    return id.column >= 0 && id.row >= 0 && id.column < m.matrixWidth && id.row < m.matrixHeight;
+}
+
+math::Aabb TileSelector::nodeBounds(const TileId& id, double minZ, double maxZ) const {
+    double x0, y0, x1, y1;
+    mSetup.grid.tileBounds(id, x0, y0, x1, y1);
+    const io::TileMatrix& m = mSetup.grid.levels[std::size_t(id.level)];
+    // Posts sit half a pixel east/south of the tile corner and skirts flare half a pixel out:
+    // one pixel of margin covers both.
+    math::Aabb b;
+    b.min = glm::dvec3(x0 - m.pixelXSize, y0 - m.pixelYSize, minZ);
+    b.max = glm::dvec3(x1 + m.pixelXSize, y1 + m.pixelYSize, maxZ);
+    return b;
+}
+
+double TileSelector::levelError(const TileId& geometryTile) const {
+    io::TileStats s;
+    double e = 0.0;
+    TileId t = geometryTile;
+    // Unknown stats: inherit the nearest known ancestor's error (coarser levels bound finer).
+    while (t.level >= 0) {
+        const TileState st = mStats->lookup(t, s);
+        if (st == TileState::Known) {
+            e = s.geometricError;
+            break;
+        }
+        if (t.level == 0) break;
+        t = t.parent();
+    }
+    return e + mSetup.options.tinTolerance(e);
+}
+
+void TileSelector::request(const TileKey& key, double priority) {
+    mResult.requests.push_back(TileRequest{key, priority});
+}
+
+bool TileSelector::findDrawable(TileKey& key, TileHandle& handle) {
+    // Walks from key.id up to the root; leaves `key` at the drawable tile.
+    TileKey k = key;
+    while (true) {
+        const TileHandle h = mResidency->drawable(k);
+        if (h.valid()) {
+            key = k;
+            handle = h;
+            return true;
+        }
+        if (k.id.level == 0) break;
+        k.id = k.id.parent();
+    }
+    // Nothing drawable at all: make sure the root of this branch is on its way.
+    const std::size_t rootIndex =
+        std::size_t(k.id.row) * std::size_t(mSetup.grid.levels[0].matrixWidth) +
+        std::size_t(k.id.column);
+    std::size_t layerSlot = 0;
+    for (std::size_t i = 0; i < mSetup.textures.size(); ++i)
+        if (mSetup.textures[i].layer == k.layer) layerSlot = i + 1;
+    const std::size_t roots = mRootRequested.size() / (1 + mSetup.textures.size());
+    const std::size_t slot = layerSlot * roots + rootIndex;
+    if (slot < mRootRequested.size() && !mRootRequested[slot] && k.id != key.id) {
+        mRootRequested[slot] = 1;
+        request(k, kNothingDrawnPriority * 2);
+    }
+    return false;
+}
+
+void TileSelector::emit(const TileId& id, const NodeInfo& info, double distance, double ppm) {
+    const TerrainOptions& opt = mSetup.options;
+    DrawTile tile;
+    tile.id = id;
+    tile.distance = distance;
+
+    // Geometry: the node itself, or its ancestor at the finest elevation level.
+    const TileId wantedGeom = ancestorAt(id, mSetup.geometryMaxLevel);
+    TileKey gk{mSetup.geometryLayer, 0, wantedGeom};
+    TileHandle gh;
+    const bool found = findDrawable(gk, gh);
+    if (!found || gk.id != wantedGeom) {
+        const double shownPx = found ? levelError(gk.id) * ppm : 0.0;
+        request(TileKey{mSetup.geometryLayer, 0, wantedGeom},
+                found ? shownPx : kNothingDrawnPriority + info.error * ppm);
+    }
+    if (!found) {
+        ++mResult.counters.tilesMissing;
+        return;
+    }
+    tile.geometry = gk;
+    tile.handle = gh;
+    tile.fromAncestor = gk.id != wantedGeom;
+    tile.clipped = gk.id != id;
+    tile.geometricErrorPx = levelError(gk.id) * ppm;
+    {
+        double x0, y0, x1, y1;
+        mSetup.grid.tileBounds(id, x0, y0, x1, y1);
+        const io::TileMatrix& m = mSetup.grid.levels[std::size_t(id.level)];
+        tile.clipMin = glm::dvec2(x0 + 0.5 * m.pixelXSize, y0 - 0.5 * m.pixelYSize);
+        tile.clipMax = glm::dvec2(x1 + 0.5 * m.pixelXSize, y1 - 0.5 * m.pixelYSize);
+    }
+
+    // Textures, per layer (Döllner's texture loop): coarsest level whose texel is fine enough.
+    tile.firstTexture = std::uint32_t(mResult.textures.size());
+    bool anyTextureFallback = false;
+    for (const TextureLayerSpec& layer : mSetup.textures) {
+        int level = std::min(id.level, layer.maxLevel);
+        while (level > 0 && !opt.fullResolution &&
+               TerrainOptions::postSpacing(mSetup.grid, level - 1) * ppm <= opt.tauTex)
+            --level;
+        TextureAssignment ta;
+        ta.wanted = TileKey{layer.layer, layer.frame, ancestorAt(id, level)};
+        ta.key = ta.wanted;
+        const bool have = findDrawable(ta.key, ta.handle);
+        ta.fromAncestor = have && ta.key.id != ta.wanted.id;
+        if (!have || ta.fromAncestor) {
+            const double shownPx =
+                have ? TerrainOptions::postSpacing(mSetup.grid, ta.key.id.level) * ppm
+                     : kNothingDrawnPriority;
+            request(ta.wanted, shownPx);
+        }
+        if (ta.fromAncestor) {
+            ++mResult.counters.texturesFromAncestor;
+            anyTextureFallback = true;
+        }
+        double x0, y0, x1, y1;
+        mSetup.grid.tileBounds(ta.key.id, x0, y0, x1, y1);
+        ta.boundsMin = glm::dvec2(x0, y0);
+        ta.boundsMax = glm::dvec2(x1, y1);
+        mResult.textures.push_back(ta);
+    }
+    tile.textureCount = std::uint32_t(mResult.textures.size()) - tile.firstTexture;
+
+    if (tile.fromAncestor) ++mResult.counters.geometryFromAncestor;
+    if (tile.fromAncestor || anyTextureFallback) ++mResult.counters.tilesFromAncestor;
+    mResult.tiles.push_back(tile);
+}
+
+void TileSelector::visit(const TileId& id, const NodeInfo& parent) {
+    ++mResult.counters.nodesVisited;
+    NodeInfo info = parent;
+    info.known = false;
+    if (id.level <= mSetup.geometryMaxLevel) {
+        io::TileStats s;
+        const TileState st = mStats->lookup(id, s);
+        if (st == TileState::Absent) return;
+        if (st == TileState::Known) {
+            info.minZ = s.minValue;
+            info.maxZ = s.maxValue;
+            info.error = s.geometricError;
+            info.known = true;
+        }
+    }
+    const TerrainOptions& opt = mSetup.options;
+    const double tol = opt.tinTolerance(info.error);
+    const double slack = info.error + tol;
+    const math::Aabb box = nodeBounds(id, info.minZ - slack, info.maxZ + slack);
+    if (!mFrustum.intersects(box)) {
+        ++mResult.counters.culled;
+        return;
+    }
+    const double distance = box.distanceTo(mCamera->eye);
+    const double ppm = mCamera->pixelsPerMetreAt(distance);
+
+    bool refine = false;
+    if (id.level < mSetup.geometryMaxLevel) {
+        const double gammaPx = (info.error + tol) * ppm;
+        refine = opt.fullResolution || gammaPx > opt.tauGeom;
+    }
+    if (!refine) {
+        const double texelPx = TerrainOptions::postSpacing(mSetup.grid, id.level) * ppm;
+        for (const TextureLayerSpec& t : mSetup.textures)
+            if (t.maxLevel > id.level && (opt.fullResolution || texelPx > opt.tauTex))
+                refine = true;
+    }
+    if (refine && id.level < mMaxDepth) {
+        bool anyChild = false;
+        for (int q = 0; q < 4; ++q) {
+            const TileId c = id.child(q);
+            if (!inMatrix(c)) continue;
+            anyChild = true;
+            visit(c, info);
+        }
+        if (anyChild) return;
+    }
+    emit(id, info, distance, ppm);
+}
+
+const SelectionResult& TileSelector::select(const math::Camera& camera, const TileStatsTable& stats,
+                                            TileResidency& residency) {
+    mResult.tiles.clear();
+    mResult.textures.clear();
+    mResult.requests.clear();
+    mResult.counters = SelectionCounters{};
+    std::fill(mRootRequested.begin(), mRootRequested.end(), std::uint8_t(0));
+    if (mSetup.grid.levels.empty()) return mResult;
+
+    mCamera = &camera;
+    mStats = &stats;
+    mResidency = &residency;
+    mFrustum = math::Frustum(camera.projection() * camera.view());
+
+    const io::TileMatrix& root = mSetup.grid.levels[0];
+    NodeInfo unknownRoot;
+    unknownRoot.minZ = mSetup.heightMin;
+    unknownRoot.maxZ = mSetup.heightMax;
+    for (int row = 0; row < root.matrixHeight; ++row)
+        for (int col = 0; col < root.matrixWidth; ++col) visit(TileId{0, col, row}, unknownRoot);
+
+    // Several nodes can want the same payload (a shared texture ancestor, geometry beyond the
+    // elevation pyramid): keep one request per key with the highest priority. In-place sort.
+    auto& req = mResult.requests;
+    std::sort(req.begin(), req.end(), [](const TileRequest& a, const TileRequest& b) {
+        if (a.key.layer != b.key.layer) return a.key.layer < b.key.layer;
+        if (a.key.frame != b.key.frame) return a.key.frame < b.key.frame;
+        if (a.key.id != b.key.id) return a.key.id < b.key.id;
+        return a.priority > b.priority;
+    });
+    req.erase(
+        std::unique(req.begin(), req.end(),
+                    [](const TileRequest& a, const TileRequest& b) { return a.key == b.key; }),
+        req.end());
+
+    mResult.counters.tilesDrawn = std::uint32_t(mResult.tiles.size());
+    mResult.counters.requested = std::uint32_t(mResult.requests.size());
+    mCamera = nullptr;
+    mStats = nullptr;
+    mResidency = nullptr;
+    return mResult;
+}
+
+}  // namespace kiosk::terrain
