@@ -74,13 +74,6 @@ Result<std::unique_ptr<Session>> Session::open(
     if (!scene) return scene.diagnostics;
     s->mScene = std::move(*scene.value);
 
-    auto overlay = render::OverlayRenderer::create(render::FontAtlas::defaultFontPath(), 18);
-    if (overlay) {
-        s->mOverlay.emplace(std::move(*overlay.value));
-    } else {
-        // No text is no reason to leave the display dark.
-        KIOSK_LOG_WARN(kTag, "overlays disabled: %s", overlay.diagnostics.format().c_str());
-    }
 
     const auto& sc = *s->mScenario;
     if (sc.clock) {
@@ -178,6 +171,17 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
 }
 
 void Session::drawOverlays(double time, int width, int height) {
+    // Text scales with the output: legible on a wall at 4K, not covering a 320-pixel preview.
+    const int fontPx = std::clamp(height / 40, 10, 40);
+    if (fontPx != mOverlayFontPx) {
+        mOverlayFontPx = fontPx;
+        mOverlay.reset();
+        auto overlay = render::OverlayRenderer::create(render::FontAtlas::defaultFontPath(), fontPx);
+        if (overlay)
+            mOverlay.emplace(std::move(*overlay.value));
+        else  // no text is no reason to leave the display dark
+            KIOSK_LOG_WARN(kTag, "overlays disabled: %s", overlay.diagnostics.format().c_str());
+    }
     if (!mOverlay) return;
     auto& o = *mOverlay;
     const auto& sc = *mScenario;
@@ -231,7 +235,7 @@ void Session::drawLegend(const config::LegendOverlay& legend, int width, int hei
     std::string title = !legend.title.empty() ? legend.title : !def->label.empty() ? def->label : def->name;
     if (!tf.units.empty()) title += " (" + tf.units + ")";
     const float line = float(o.font().lineHeight());
-    const float barW = 260, barH = 16;
+    const float barW = line * 12.0f, barH = line * 0.8f;
     if (tf.discrete()) {
         auto patches = color::legendPatches(tf);
         float w = o.measure(title);

@@ -58,6 +58,7 @@ private:
     std::unique_ptr<config::Scenario> mScenario;
     std::unique_ptr<scene::TerrainScene> mScene;
     std::optional<render::OverlayRenderer> mOverlay;
+    int mOverlayFontPx = 0;
     anim::CameraPath mPath;
     anim::TimeZone mZone;
     double mStart = 0, mEnd = 0;

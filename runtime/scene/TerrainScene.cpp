@@ -473,7 +473,14 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
     auto& r = *mRenderer;
     r.counters().clear();
     r.begin(camera, mSceneOrigin, style);
-    for (const auto& t : mSelection->tiles) {
+    // Front to back: llvmpipe's early depth test then skips shading hidden terrain.
+    mDrawOrder.clear();
+    for (std::uint32_t i = 0; i < mSelection->tiles.size(); ++i) mDrawOrder.push_back(i);
+    std::sort(mDrawOrder.begin(), mDrawOrder.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return mSelection->tiles[a].distance < mSelection->tiles[b].distance;
+    });
+    for (std::uint32_t index : mDrawOrder) {
+        const terrain::DrawTile& t = mSelection->tiles[index];
         if (!t.handle.valid()) continue;
         const GpuSlot& g = mGpu[t.handle.index()];
         const terrain::TilePayload* p = mCache->get(t.handle);
@@ -496,10 +503,16 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
             b.strength = l.strength;
             r.setLayer(int(li), b);
         }
-        if (t.clipped)
-            r.draw(g.mesh, p->mesh->origin, t.fromAncestor, t.clipMin, t.clipMax);
-        else
+        if (t.clipped) {
+            // Overlap the neighbours by a quarter post: with both clip edges on the same line,
+            // float interpolation can leave a fragment neither side keeps (a one-pixel crack);
+            // the overlap is resolved by the depth test.
+            const auto& m = mGrid.levels[std::size_t(std::min(t.id.level, mGrid.maxLevel()))];
+            const glm::dvec2 margin(0.25 * m.pixelXSize, 0.25 * m.pixelYSize);
+            r.draw(g.mesh, p->mesh->origin, t.fromAncestor, t.clipMin - margin, t.clipMax + margin);
+        } else {
             r.draw(g.mesh, p->mesh->origin, t.fromAncestor);
+        }
     }
     r.end();
     mFrame.tilesDrawn = r.counters().tilesDrawn;

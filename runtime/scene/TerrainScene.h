@@ -143,6 +143,7 @@ private:
     std::vector<int> mKeyLayerStatus;  ///< key layer -> index into mStatus
     std::unique_ptr<render::TerrainRenderer> mRenderer;
     std::vector<terrain::TileRequest> mPrefetch;
+    std::vector<std::uint32_t> mDrawOrder;
     const terrain::SelectionResult* mSelection = nullptr;
     math::Aabb mBounds;
     glm::dvec3 mSceneOrigin{0.0};

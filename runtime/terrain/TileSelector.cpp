@@ -145,8 +145,12 @@ void TileSelector::emit(const TileId& id, const NodeInfo& info, double distance,
     tile.id = id;
     tile.distance = distance;
 
-    // Geometry: the node itself, or its ancestor at the finest elevation level.
-    const TileId wantedGeom = ancestorAt(id, mSetup.geometryMaxLevel);
+    // Geometry: the coarsest ancestor whose mesh meets tauGeom (texture-driven refinement must
+    // not multiply triangles), else the node itself or its ancestor at the finest level.
+    const int geometryLevel =
+        info.geometryLevel >= 0 ? std::min(info.geometryLevel, mSetup.geometryMaxLevel)
+                                : mSetup.geometryMaxLevel;
+    const TileId wantedGeom = ancestorAt(id, geometryLevel);
     TileKey gk{mSetup.geometryLayer, 0, wantedGeom};
     TileHandle gh;
     const bool found = findDrawable(gk, gh);
@@ -239,6 +243,10 @@ void TileSelector::visit(const TileId& id, const NodeInfo& parent) {
         const double gammaPx = (info.error + tol) * ppm;
         refine = opt.fullResolution || gammaPx > opt.tauGeom;
     }
+    // Only a node whose error is known may stand in for its descendants' geometry.
+    if (!refine && info.geometryLevel < 0 && (info.known || id.level == 0) &&
+        id.level <= mSetup.geometryMaxLevel)
+        info.geometryLevel = id.level;
     if (!refine) {
         const double texelPx = TerrainOptions::postSpacing(mSetup.grid, id.level) * ppm;
         for (const TextureLayerSpec& t : mSetup.textures)

@@ -145,6 +145,9 @@ private:
     struct NodeInfo {
         double minZ = 0, maxZ = 0, error = 0;
         bool known = false;
+        /** Level of the ancestor whose mesh already meets tauGeom (-1: none yet). Nodes below it
+         *  are refined for texture detail only and draw that ancestor's mesh, clipped. */
+        int geometryLevel = -1;
     };
     void visit(const TileId& id, const NodeInfo& parent);
     void emit(const TileId& id, const NodeInfo& info, double distance, double ppm);
