@@ -19,7 +19,7 @@ rm -f "$STORE"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 echo "prepare-demo: importing $DEM"
-"$GEOKIOSK" import elevation "$DEM" --store "$work/rainier.gpkg" --name elevation --quiet
+"$GEOKIOSK" import elevation "$DEM" --store "$work/rainier.gpkg" --name elevation --fill-voids --quiet
 "$GEOKIOSK" import topographic --store "$work/rainier.gpkg" --elevation elevation --name hillshade \
     --quiet
 echo "prepare-demo: making the SYNTHETIC flood (bathtub fill, not a model run)"

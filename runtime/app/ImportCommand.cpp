@@ -17,7 +17,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: geokiosk import elevation SRC --store STORE [--name NAME] [--crs EPSG:N]\n"
-    "                       [--pixel-size M] [--z-scale F] [--units m|ft]\n"
+    "                       [--pixel-size M] [--z-scale F] [--units m|ft] [--fill-voids]\n"
     "       geokiosk import imagery SRC --store STORE --name NAME [--jpeg]\n"
     "       geokiosk import sequence SRC... --store STORE --name NAME [--times TIMES.csv]\n"
     "                       [--variable VAR] [--start TIME] [--step SECONDS] [--like RASTER]\n"
@@ -61,7 +61,7 @@ int runImportCommand(const std::vector<std::string>& args) {
         "--store", "--name",  "--crs",      "--pixel-size",    "--z-scale",
         "--units", "--times", "--variable", "--wet-threshold", "--start",
         "--step",  "--like",  "--threads"};
-    const std::vector<std::string> flags = {"--categorical", "--jpeg", "--quiet"};
+    const std::vector<std::string> flags = {"--categorical", "--jpeg", "--quiet", "--fill-voids"};
     for (std::size_t i = 1; i < args.size(); ++i) {
         const std::string& a = args[i];
         if (a.rfind("--", 0) != 0) {
@@ -78,6 +78,10 @@ int runImportCommand(const std::vector<std::string>& args) {
         }
         if (a == "--quiet") {
             o.quiet = true;
+            continue;
+        }
+        if (a == "--fill-voids") {
+            o.fillVoids = true;
             continue;
         }
         if (std::find(valued.begin(), valued.end(), a) == valued.end()) {

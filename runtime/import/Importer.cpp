@@ -10,6 +10,7 @@
 #include "runtime/io/StoreWriter.h"
 
 #include <cpl_string.h>
+#include <gdal_alg.h>
 #include <gdal_utils.h>
 
 #include <algorithm>
@@ -142,6 +143,19 @@ static Diagnostics importElevationImpl(const std::string& source, const ImportOp
     initGdal();
     auto src = openRaster(source);
     if (!src) return src.diagnostics;
+    if (o.fillVoids) {
+        // Voids read as holes in the terrain; a kiosk should show a plausible surface instead.
+        GDALDriverH mem = GDALGetDriverByName("MEM");
+        GDALDatasetH copy = mem ? GDALCreateCopy(mem, "", raw(*src), FALSE, nullptr, nullptr, nullptr) : nullptr;
+        if (!copy || GDALFillNodata(GDALGetRasterBand(copy, 1), nullptr, 100.0, 0, 0, nullptr,
+                                    nullptr, nullptr) != CE_None) {
+            if (copy) GDALClose(copy);
+            Diagnostics d;
+            d.error("IMPORT_FILL_VOIDS", source, "", gdalError("cannot fill voids"));
+            return d;
+        }
+        *src = GdalDataset(copy);
+    }
     auto factor = unitFactor(raw(*src), o, source);
     if (!factor) return factor.diagnostics;
     const double f = *factor * o.zScale;

@@ -27,6 +27,9 @@ struct ImportOptions {
     std::optional<bool> categorical;      ///< --categorical (auto for Cell2Fire grids)
     bool jpeg = false;                    ///< --jpeg: opaque imagery tiles as JPEG
     bool quiet = false;                   ///< no progress output
+    /** @brief --fill-voids: interpolate interior nodata holes (SRTM voids) before tiling, with
+     *  GDAL's FillNodata (inverse distance, up to 100 pixels). Holds the raster in memory. */
+    bool fillVoids = false;
     int threads = 2;
     int tileSize = 256;
     /** @brief Test hook: fail after this many tiles (< 0 = off). */

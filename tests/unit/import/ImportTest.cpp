@@ -214,6 +214,35 @@ TEST(ImportElevation, SmallDemRoundTripsWithinDeclaredPrecision) {
     EXPECT_NEAR(l->minValue, srcMin, l->precision);
 }
 
+TEST(ImportElevation, FillVoidsInterpolatesTheNodataBlock) {
+    const fs::path dir = testDir();
+    std::vector<float> src;
+    const fs::path dem = makeDem(dir, &src);
+    ImportOptions o = options(dir / "filled.gpkg");
+    o.fillVoids = true;
+    Diagnostics d = importElevation(dem.string(), o);
+    ASSERT_FALSE(d.hasErrors()) << d.format();
+    auto r = openStore(o.store);
+    ASSERT_TRUE(r);
+    const auto got = finestArray(*r, "elevation", 600, 520);
+    // The 40 x 30 void is filled with values inside the range of the valid cells around it.
+    float lo = 1e9f, hi = -1e9f;
+    for (int y = 0; y < 60; ++y)
+        for (int x = 0; x < 80; ++x) {
+            const float v = src[std::size_t(y * 600 + x)];
+            if (v != -9999.f) lo = std::min(lo, v), hi = std::max(hi, v);
+        }
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x) {
+            const float v = got[std::size_t(y * 600 + x)];
+            ASSERT_FALSE(std::isnan(v)) << x << "," << y;
+            EXPECT_GE(v, lo - 1.0f);
+            EXPECT_LE(v, hi + 1.0f);
+        }
+    // Valid cells are untouched.
+    EXPECT_NEAR(got[std::size_t(100 * 600 + 100)], src[std::size_t(100 * 600 + 100)], 0.05f);
+}
+
 TEST(ImportElevation, BorderPostsEqualNeighbourSamples) {
     const fs::path dir = testDir();
     const fs::path store = dir / "s.gpkg";
