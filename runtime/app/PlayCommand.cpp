@@ -24,6 +24,8 @@ namespace {
 constexpr const char* kTag = "play";
 /** Scenario files are polled this often; a valid edit shows within a second. */
 constexpr double kReloadPollSeconds = 0.5;
+/** How far ahead (wall seconds) the camera path is sampled for prefetching. */
+constexpr double kPrefetchSeconds = 2.0;
 
 int usage(const std::string& message) {
     std::fprintf(stderr,
@@ -187,6 +189,10 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         else
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
         session->drawFrame(cam, t, w, h);
+        // Camera paths are known in advance: ask for the tiles of the view two seconds ahead.
+        if (auto ahead = session->viewpointAt(clock.predict(kPrefetchSeconds), ""))
+            session->terrain().prefetch(makeCamera(*ahead, session->terrain().bounds(), w, h,
+                                                   session->scenario().camera.fovY));
         if (!dpy.swapBuffers()) {
             KIOSK_LOG_ERROR(kTag, "presenting the frame failed; stopping");
             return kExitCannotRun;

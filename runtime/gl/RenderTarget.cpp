@@ -1,6 +1,7 @@
 #include "runtime/gl/RenderTarget.h"
 
 #include <cstdio>
+#include <algorithm>
 #include <cstring>
 #include <string>
 
@@ -15,6 +16,14 @@ std::string hex(GLenum value) {
 }  // namespace
 
 Result<RenderTarget> RenderTarget::create(int width, int height) {
+    return create(width, height, GL_RGBA8);
+}
+
+Result<RenderTarget> RenderTarget::createFloat(int width, int height) {
+    return create(width, height, GL_RGBA32F);
+}
+
+Result<RenderTarget> RenderTarget::create(int width, int height, GLenum colorFormat) {
     RenderTarget rt;
     rt.mWidth = width;
     rt.mHeight = height;
@@ -22,7 +31,7 @@ Result<RenderTarget> RenderTarget::create(int width, int height) {
     rt.mColor = Renderbuffer::create();
     rt.mDepth = Renderbuffer::create();
     glBindRenderbuffer(GL_RENDERBUFFER, rt.mColor.id());
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+    glRenderbufferStorage(GL_RENDERBUFFER, colorFormat, width, height);
     glBindRenderbuffer(GL_RENDERBUFFER, rt.mDepth.id());
     glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
     glBindFramebuffer(GL_FRAMEBUFFER, rt.mFbo.id());
@@ -47,6 +56,19 @@ void RenderTarget::bind() const {
 Image RenderTarget::readColor() const {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, mFbo.id());
     return readPixels(mWidth, mHeight);
+}
+
+std::vector<float> RenderTarget::readFloat() const {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, mFbo.id());
+    std::vector<float> px(std::size_t(mWidth) * std::size_t(mHeight) * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, mWidth, mHeight, GL_RGBA, GL_FLOAT, px.data());
+    const std::size_t stride = std::size_t(mWidth) * 4;
+    for (int y = 0; y < mHeight / 2; ++y)
+        std::swap_ranges(px.begin() + std::ptrdiff_t(std::size_t(y) * stride),
+                         px.begin() + std::ptrdiff_t(std::size_t(y + 1) * stride),
+                         px.begin() + std::ptrdiff_t(std::size_t(mHeight - 1 - y) * stride));
+    return px;
 }
 
 Image readPixels(int width, int height) {

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <vector>
+#include <vector>
 
 #include "runtime/core/Result.h"
 #include "runtime/gl/GlObject.h"
@@ -27,6 +28,8 @@ struct Image {
 class RenderTarget {
 public:
     static Result<RenderTarget> create(int width, int height);
+    /** @brief RGBA32F colour (needs EXT_color_buffer_float; GL_FRAMEBUFFER_INCOMPLETE without). */
+    static Result<RenderTarget> createFloat(int width, int height);
 
     void bind() const;
     int width() const noexcept { return mWidth; }
@@ -35,8 +38,11 @@ public:
 
     /** @brief Read the colour buffer into an image, flipped to top-row-first. */
     Image readColor() const;
+    /** @brief Float target only: RGBA floats, top row first. */
+    std::vector<float> readFloat() const;
 
 private:
+    static Result<RenderTarget> create(int width, int height, GLenum colorFormat);
     Framebuffer mFbo;
     Renderbuffer mColor;
     Renderbuffer mDepth;

@@ -193,7 +193,10 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
         s << "    C *= mix(mix(1.0, uLensParam" << j << ".z, uLensParam" << j
           << ".w), uLensParam" << j << ".y, lens" << j << ");\n";
     }
-    s << "    fragColor = vec4(clamp(C, 0.0, 1.0), 1.0);\n}\n";
+    if (desc.outputPosition)
+        s << "    fragColor = vec4(vScenePos, vElevation, 2.0);\n}\n";
+    else
+        s << "    fragColor = vec4(clamp(C, 0.0, 1.0), 1.0);\n}\n";
     return s.str();
 }
 

@@ -53,6 +53,11 @@ struct CompositeProgramDesc {
     std::vector<CompositeLayer> layers;
     std::vector<CompositeLens> lenses;
     int lutCount = 0;  ///< distinct LUTs referenced by Data/Sequence layers
+    /**
+     * @brief Write (scene x, scene y, elevation, 2.0) instead of a colour, into a float target:
+     * the fidelity tests measure the rendered surface against the full-resolution data.
+     */
+    bool outputPosition = false;
 };
 
 /**

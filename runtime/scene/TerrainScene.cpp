@@ -225,33 +225,19 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
         desc.lenses.push_back(cl);
     }
 
-    auto renderer = render::TerrainRenderer::create(desc, caps.maxTextureUnits);
-    if (!renderer) return renderer.diagnostics;
-    s->mRenderer = std::make_unique<render::TerrainRenderer>(std::move(*renderer.value));
-    for (std::size_t k = 0; k < s->mLuts.size(); ++k) {
-        SceneLut& lut = s->mLuts[k];
-        render::LutBinding b;
+    s->mDesc = desc;
+    s->mMaxTextureUnits = caps.maxTextureUnits;
+    for (SceneLut& lut : s->mLuts) {
+        std::vector<std::uint8_t> rgba;
         if (lut.function) {
-            auto rgba = color::buildLut(*lut.function, color::kMinLutSize);
-            lut.size = int(rgba.size() / 4);
-            lut.texture = render::makeLutTexture(lut.size, rgba.data());
-            b.domainMin = float(lut.function->domainMin);
-            b.domainMax = float(lut.function->domainMax);
-            b.nodata = toVec4(lut.function->nodata);
-            b.below = toVec4(lut.function->below);
-            b.above = toVec4(lut.function->above);
+            rgba = color::buildLut(*lut.function, color::kMinLutSize);
         } else {
-            const std::uint8_t grey[8] = {40, 40, 40, 255, 230, 230, 230, 255};
-            lut.size = 2;
-            lut.texture = render::makeLutTexture(2, grey);
+            rgba = {40, 40, 40, 255, 230, 230, 230, 255};
         }
-        b.texture = lut.texture.id();
-        b.size = lut.size;
-        s->mRenderer->setLut(int(k), b);
+        lut.size = int(rgba.size() / 4);
+        lut.texture = render::makeLutTexture(lut.size, rgba.data());
     }
-    // Without a hypsometric layer the terrain base is a neutral grey.
-    const std::uint8_t base[8] = {200, 200, 195, 255, 200, 200, 195, 255};
-    s->mRenderer->setElevationLut(2, base, 0.0f, 1.0f);
+    if (Diagnostics d = s->buildRenderer(); d.hasErrors()) return d;
 
     terrain::CacheBudget budget{std::size_t(std::max<std::int64_t>(scenario.terrain.cacheBytes, 1 << 20)),
                                 std::size_t(std::max<std::int64_t>(scenario.terrain.gpuBytes, 1 << 20))};
@@ -270,6 +256,35 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
         [path] { return io::StoreReader::open(path); }, bindings, s->mOptions);
     s->mLoader = std::make_unique<loader::TileLoader>(loader::LoaderOptions{}, std::move(fn));
     return s;
+}
+
+Diagnostics TerrainScene::buildRenderer() {
+    auto renderer = render::TerrainRenderer::create(mDesc, mMaxTextureUnits);
+    if (!renderer) return renderer.diagnostics;
+    mRenderer = std::make_unique<render::TerrainRenderer>(std::move(*renderer.value));
+    for (std::size_t k = 0; k < mLuts.size(); ++k) {
+        const SceneLut& lut = mLuts[k];
+        render::LutBinding b;
+        if (lut.function) {
+            b.domainMin = float(lut.function->domainMin);
+            b.domainMax = float(lut.function->domainMax);
+            b.nodata = toVec4(lut.function->nodata);
+            b.below = toVec4(lut.function->below);
+            b.above = toVec4(lut.function->above);
+        }
+        b.texture = lut.texture.id();
+        b.size = lut.size;
+        mRenderer->setLut(int(k), b);
+    }
+    // Without a hypsometric layer the terrain base is a neutral grey.
+    const std::uint8_t base[8] = {200, 200, 195, 255, 200, 200, 195, 255};
+    mRenderer->setElevationLut(2, base, 0.0f, 1.0f);
+    return {};
+}
+
+bool TerrainScene::setPositionOutput(bool on) {
+    mDesc.outputPosition = on;
+    return !buildRenderer().hasErrors();
 }
 
 void TerrainScene::noteFailure(const terrain::TilePayload& payload) {
@@ -363,6 +378,7 @@ bool TerrainScene::sequenceFrameComplete(const StackLayer& layer, bool useA) con
 
 void TerrainScene::update(const math::Camera& camera, double time) {
     ++mFrameNumber;
+    mTime = time;
     mFrame = {};
     mCache->beginFrame(mFrameNumber);
     mBudget.beginFrame();
@@ -468,8 +484,43 @@ render::LayerBinding TerrainScene::bindingFor(const terrain::TextureAssignment& 
     return b;
 }
 
+void TerrainScene::bindLenses() {
+    const double start = mScenario->clock ? mScenario->clock->start : 0.0;
+    for (std::size_t j = 0; j < mScenario->lenses.size(); ++j) {
+        const config::Lens& lens = mScenario->lenses[j];
+        glm::dvec2 centre(lens.center[0], lens.center[1]), radii(lens.radii[0], lens.radii[1]);
+        // Keyed positions: hold before the first key, piecewise linear between keys.
+        const config::LensKey* prev = nullptr;
+        for (const auto& key : lens.keys) {
+            const double kt = key.time.resolve(start);
+            glm::dvec2 kc = key.center ? glm::dvec2((*key.center)[0], (*key.center)[1]) : centre;
+            glm::dvec2 kr = key.radii ? glm::dvec2((*key.radii)[0], (*key.radii)[1]) : radii;
+            if (kt <= mTime || !prev) {
+                centre = kc;
+                radii = kr;
+            } else {
+                const double pt = prev->time.resolve(start);
+                const double a = kt > pt ? std::clamp((mTime - pt) / (kt - pt), 0.0, 1.0) : 1.0;
+                centre = glm::mix(centre, kc, a);
+                radii = glm::mix(radii, kr, a);
+                break;
+            }
+            prev = &key;
+        }
+        render::LensBinding b;
+        b.centre = centre;
+        b.radii = glm::max(radii, glm::dvec2(1e-3));
+        b.softEdge = float(std::clamp(lens.softEdge / std::max(b.radii.x, b.radii.y), 0.0, 1.0));
+        b.insideGain = float(1.0 + lens.raise);
+        b.outsideGain = float(1.0 - lens.lower);
+        b.enabled = lens.enabled;
+        mRenderer->setLens(int(j), b);
+    }
+}
+
 void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& style) {
     if (!mSelection) return;
+    bindLenses();
     auto& r = *mRenderer;
     r.counters().clear();
     r.begin(camera, mSceneOrigin, style);

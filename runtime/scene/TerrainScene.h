@@ -92,6 +92,11 @@ public:
     /** @brief Frame times of the scenario's sequences (clock key frames). */
     std::vector<double> sequenceKeyTimes() const;
     const SceneLut* lut(const std::string& transferName) const;
+    /**
+     * @brief Draw scene positions and elevations instead of colours (into a float target) for
+     * fidelity measurements. Rebuilds the terrain program; false if that failed.
+     */
+    bool setPositionOutput(bool on);
     const io::StoreInfo& storeInfo() const { return mReader->info(); }
 
 private:
@@ -115,6 +120,8 @@ private:
         std::optional<float> nodataAs;
     };
 
+    Diagnostics buildRenderer();
+    void bindLenses();
     void drainCompletions();
     void uploadPayload(terrain::TileHandle handle, terrain::TilePayload& payload);
     void releaseEvicted();
@@ -142,6 +149,8 @@ private:
     std::vector<LayerStatus> mStatus;
     std::vector<int> mKeyLayerStatus;  ///< key layer -> index into mStatus
     std::unique_ptr<render::TerrainRenderer> mRenderer;
+    render::CompositeProgramDesc mDesc;
+    int mMaxTextureUnits = 16;
     std::vector<terrain::TileRequest> mPrefetch;
     std::vector<std::uint32_t> mDrawOrder;
     const terrain::SelectionResult* mSelection = nullptr;
@@ -149,6 +158,7 @@ private:
     glm::dvec3 mSceneOrigin{0.0};
     SceneFrameInfo mFrame;
     std::uint64_t mFrameNumber = 0;
+    double mTime = 0;
     bool mSettled = false;
 };
 
