@@ -1,5 +1,8 @@
 #include "runtime/loader/StoreTileLoader.h"
 
+#include <chrono>
+#include <thread>
+
 #include <string>
 #include <utility>
 
@@ -45,6 +48,8 @@ void StoreTileLoader::threadStopping() {
 }
 
 TilePayload StoreTileLoader::load(const LoadRequest& request) {
+    if (mDelaySeconds > 0)
+        std::this_thread::sleep_for(std::chrono::duration<double>(mDelaySeconds));
     TilePayload p;
     p.key = request.key;
     if (!mReader) {

@@ -39,6 +39,8 @@ public:
     void threadStarted() override;
     terrain::TilePayload load(const LoadRequest& request) override;
     void threadStopping() override;
+    /** @brief Test hook: every load() first sleeps this long (a slow disk or network share). */
+    void setArtificialDelay(double seconds) noexcept { mDelaySeconds = seconds; }
 
 private:
     StoreOpener mOpener;
@@ -47,6 +49,7 @@ private:
     std::unique_ptr<io::StoreReader> mReader;
     Diagnostics mOpenDiagnostics;
     terrain::RtinMesher mMesher;
+    double mDelaySeconds = 0.0;
 };
 
 }  // namespace kiosk::loader

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 
 #include "runtime/color/TransferFunction.h"
 #include "runtime/core/Log.h"
@@ -207,6 +209,9 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
         desc.layers.push_back(comp);
         s->mLayers.push_back(std::move(sl));
     }
+    for (std::size_t i = 0; i < s->mLayers.size(); ++i)
+        if (s->mLayers[i].sequence && s->mLayers[i].specB >= 0 && s->mFirstSequenceLayer == SIZE_MAX)
+            s->mFirstSequenceLayer = i;
     // Blend references and lenses name layers by id; resolve to stack indices.
     auto stackIndex = [&](const std::string& id) {
         for (std::size_t i = 0; i < s->mLayers.size(); ++i)
@@ -254,6 +259,9 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
     const auto path = s->mStorePath;
     auto fn = std::make_unique<loader::StoreTileLoader>(
         [path] { return io::StoreReader::open(path); }, bindings, s->mOptions);
+    // Test hook (atomic-step tests): a slow disk, in milliseconds per tile.
+    if (const char* delay = std::getenv("GEOKIOSK_TEST_LOAD_DELAY_MS"))
+        fn->setArtificialDelay(std::atof(delay) / 1000.0);
     s->mLoader = std::make_unique<loader::TileLoader>(loader::LoaderOptions{}, std::move(fn));
     return s;
 }
@@ -518,8 +526,26 @@ void TerrainScene::bindLenses() {
     }
 }
 
+void TerrainScene::noteDrawnFrames(const StackLayer& l, const terrain::DrawTile& t) {
+    for (int k = 0; k < 2; ++k) {
+        const int spec = k == 0 ? l.specA : l.specB;
+        if (spec < 0 || int(t.textureCount) <= spec) continue;
+        const auto& a = mSelection->textures[t.firstTexture + std::uint32_t(spec)];
+        if (!a.handle.valid() || a.fromAncestor) ++mFrame.shownTilesIncomplete;
+        if (!a.handle.valid()) continue;
+        std::int32_t& shown = k == 0 ? mFrame.shownFrameA : mFrame.shownFrameB;
+        if (shown >= 0 && shown != a.key.frame) mFrame.mixedSequenceFrames = true;
+        shown = a.key.frame;
+    }
+}
+
 void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& style) {
     if (!mSelection) return;
+    mFrame.shownFrameA = mFrame.shownFrameB = -1;
+    mFrame.mixedSequenceFrames = false;
+    mFrame.shownTilesIncomplete = 0;
+    mFrame.sequencePairCommitted =
+        mFirstSequenceLayer < mLayers.size() && mLayers[mFirstSequenceLayer].shown.hasPair;
     bindLenses();
     auto& r = *mRenderer;
     r.counters().clear();
@@ -553,6 +579,7 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
             }
             b.strength = l.strength;
             r.setLayer(int(li), b);
+            if (li == mFirstSequenceLayer) noteDrawnFrames(l, t);
         }
         if (t.clipped) {
             // Overlap the neighbours by a quarter post: with both clip edges on the same line,

@@ -44,6 +44,14 @@ struct SceneFrameInfo {
     std::uint32_t requests = 0;
     std::uint32_t uploads = 0;
     bool holdingSequence = false;  ///< a sequence shows an older complete frame pair
+    /** @brief Tiles of one sequence drew different frames (must never happen: atomic steps). */
+    bool mixedSequenceFrames = false;
+    std::int32_t shownFrameA = -1;  ///< first sequence layer: frames on screen (-1: none)
+    std::int32_t shownFrameB = -1;
+    /** @brief The first sequence layer shows a pair that was complete when it was committed. */
+    bool sequencePairCommitted = false;
+    /** @brief Drawn tiles whose shown frame came from an ancestor or was absent. */
+    std::uint32_t shownTilesIncomplete = 0;
 };
 
 /** @brief A transfer function ready for the GPU and the legend. */
@@ -122,6 +130,7 @@ private:
 
     Diagnostics buildRenderer();
     void bindLenses();
+    void noteDrawnFrames(const StackLayer& layer, const terrain::DrawTile& tile);
     void drainCompletions();
     void uploadPayload(terrain::TileHandle handle, terrain::TilePayload& payload);
     void releaseEvicted();
@@ -159,6 +168,7 @@ private:
     SceneFrameInfo mFrame;
     std::uint64_t mFrameNumber = 0;
     double mTime = 0;
+    std::size_t mFirstSequenceLayer = SIZE_MAX;  ///< the layer whose frames frameInfo() reports
     bool mSettled = false;
 };
 

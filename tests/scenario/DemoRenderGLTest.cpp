@@ -57,6 +57,31 @@ protected:
         o.quiet = true;
         if (sImportDiagnostics.empty())
             sImportDiagnostics = import::importElevation(tif.string(), o).format();
+        // A six-frame sequence on the same grid: frame k holds depth k + 0.5 everywhere, so a
+        // frame's tiles are told apart by value and by key.
+        std::ofstream csv(sDir / "times.csv");
+        std::vector<std::string> frames;
+        for (int k = 0; k < 6; ++k) {
+            const fs::path f = sDir / ("depth_" + std::to_string(k) + ".tif");
+            GDALDataset* fd = GetGDALDriverManager()->GetDriverByName("GTiff")->Create(
+                f.c_str(), n, n, 1, GDT_Float32, nullptr);
+            fd->SetGeoTransform(geo);
+            fd->SetSpatialRef(&srs);
+            std::vector<float> v(std::size_t(n) * n, float(k) + 0.5f);
+            if (fd->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, n, n, v.data(), n, n, GDT_Float32,
+                                               0, 0) != CE_None)
+                sImportDiagnostics = "cannot write a frame";
+            GDALClose(fd);
+            csv << f.filename().string() << ",2026-03-14T0" << k << ":00:00Z\n";
+            frames.push_back(f.string());
+        }
+        csv.close();
+        import::ImportOptions so = o;
+        so.name = "depth";
+        so.timesCsv = (sDir / "times.csv").string();
+        so.units = "m";
+        if (sImportDiagnostics.empty())
+            sImportDiagnostics = import::importSequence(frames, so).format();
     }
     static void TearDownTestSuite() {
         std::error_code ec;
@@ -143,6 +168,59 @@ TEST_F(SyntheticTerrain, ResidentBytesStayWithinTheBudget) {
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     EXPECT_GT(peak, 0u);
+}
+
+// Issue 6: with a slow loader and time racing ahead, a new frame pair appears only once all its
+// tiles are resident: no frame ever draws tiles of different time steps.
+TEST_F(SyntheticTerrain, SequenceStepsAreAtomicWithASlowLoader) {
+    auto rt = makeTarget(256, 160);
+    const fs::path scenario = sDir / "sequence.json";
+    std::ofstream(scenario) << R"({ "version": 1, "title": "", "stores": { "s": "synthetic.gpkg" },
+        "terrain": { "store": "s", "tauGeom": 1, "tauTex": 1 },
+        "transferFunctions": { "d": { "units": "m", "stops": [ { "value": 0, "color": "#0000ff" },
+                                                               { "value": 6, "color": "#ff0000" } ] } },
+        "layers": [ { "id": "depth", "kind": "sequence", "source": { "store": "s", "sequence": "depth" },
+                      "transfer": "d" } ],
+        "clock": { "start": "2026-03-14T00:00:00Z", "end": "2026-03-14T05:00:00Z", "rate": 1 } })";
+    setenv("GEOKIOSK_TEST_LOAD_DELAY_MS", "25", 1);
+    auto s = open(scenario);
+    unsetenv("GEOKIOSK_TEST_LOAD_DELAY_MS");
+    ASSERT_TRUE(s);
+    math::Viewpoint vp;
+    vp.target = glm::dvec3(607000, 5193000, 900);
+    vp.headingDeg = 20;
+    vp.pitchDeg = -50;
+    vp.range = 7000;
+    const math::Camera cam = makeCamera(vp, s->terrain().bounds(), 256, 160, 45);
+    int held = 0, maxShown = -1, framesWithSequence = 0, switches = 0;
+    std::int32_t previousShown = -1;
+    for (int i = 0; i < 100; ++i) {
+        // 300 s of data time per rendered frame: far faster than the slow loader can follow.
+        const double t = s->startTime() + 300.0 * i;
+        rt.bind();
+        s->drawFrame(cam, t, 256, 160);
+        const auto& f = s->terrain().frameInfo();
+        ASSERT_FALSE(f.mixedSequenceFrames) << "frame " << i << " mixed time steps";
+        // A new pair appears only when every drawn tile has both its frames resident at the
+        // wanted level (later, finer geometry may draw the same frames from an ancestor).
+        if (f.sequencePairCommitted && f.shownFrameA != previousShown && previousShown >= 0) {
+            ++switches;
+            ASSERT_EQ(f.shownTilesIncomplete, 0u) << "frame " << i << " switched to a partial step";
+        }
+        if (f.sequencePairCommitted) previousShown = f.shownFrameA;
+        held += f.holdingSequence;
+        if (f.shownFrameA >= 0) {
+            ++framesWithSequence;
+            // What is shown never runs ahead of the clock.
+            EXPECT_LE(f.shownFrameA, int((t - s->startTime()) / 3600.0)) << "frame " << i;
+        }
+        maxShown = std::max(maxShown, int(f.shownFrameA));
+        std::this_thread::sleep_for(std::chrono::milliseconds(4));
+    }
+    EXPECT_GT(held, 0) << "the slow loader never made the sequence hold: the test proves nothing";
+    EXPECT_GT(maxShown, 0) << "the sequence never advanced";
+    EXPECT_GT(switches, 0);
+    EXPECT_GT(framesWithSequence, 50);
 }
 
 // The synthetic DEM's value at source pixel (col, row): what the store's posts hold.
