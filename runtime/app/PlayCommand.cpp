@@ -1,7 +1,9 @@
 #include "runtime/app/PlayCommand.h"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <thread>
@@ -147,6 +149,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     auto watchedStamps = stamps(watched);
     double lastPoll = wall.now(), last = wall.now();
     platform::InputState input;
+    std::optional<math::Viewpoint> manual;  // set while the user steers the camera
     for (long frame = 0; frameLimit < 0 || frame < frameLimit; ++frame) {
         if (stopRequested()) break;
         dpy.pollInput(input);
@@ -172,13 +175,33 @@ int runPlayCommand(const std::vector<std::string>& argv) {
                     for (const auto& d : next.diagnostics.items())
                         KIOSK_LOG_ERROR(kTag, "edit rejected, keeping the previous scenario: %s",
                                         d.format().c_str());
+                    if (const Diagnostic* e = next.diagnostics.firstError())
+                        session->setNotice("scenario edit rejected: " + e->format());
                 }
             }
         }
 
+        if (input.togglePause) clock.paused() ? clock.resume() : clock.pause();
+        if (input.step != 0) {
+            const auto keys = session->terrain().sequenceKeyTimes();
+            input.step > 0 ? clock.stepToNextKey(keys) : clock.stepToPreviousKey(keys);
+        }
         const bool ready = !session->terrain().frameInfo().holdingSequence;
         const double t = clock.advance(dt, ready).time;
         auto vp = session->viewpointAt(t, "");
+        // Interactive control (when the scenario allows it): the first navigation key takes the
+        // camera off its path from where it is; h / Home gives it back.
+        if (session->scenario().camera.interactive) {
+            if (input.home) manual.reset();
+            if ((input.orbit || input.tilt || input.zoom) && !manual && vp) manual = *vp;
+            if (manual) {
+                manual->headingDeg += 10.0 * input.orbit;
+                manual->pitchDeg = std::clamp(manual->pitchDeg + 5.0 * input.tilt, -89.0, -5.0);
+                manual->range *= std::pow(0.8, input.zoom);
+                vp = *manual;
+            }
+        }
+        input.clearRequests();
         const int w = dpy.width(), h = dpy.height();
         const math::Camera cam = vp ? makeCamera(*vp, session->terrain().bounds(), w, h,
                                                  session->scenario().camera.fovY)

@@ -213,6 +213,13 @@ void Session::drawOverlays(double time, int width, int height) {
     if (sc.overlays.legend.enabled) drawLegend(sc.overlays.legend, width, height);
     // Layer problems are always shown: an operator must see why a layer is missing.
     float y = float(height) - 24;
+    if (!mNotice.empty()) {
+        const std::string text = mNotice.size() > 160 ? mNotice.substr(0, 157) + "..." : mNotice;
+        const float w = o.measure(text) + 16;
+        o.rect(12, y - line, w, line + 6, kPanel);
+        o.text(20, y - 4, text, kWarn);
+        y -= line + 8;
+    }
     for (const auto& st : mScene->layerStatus()) {
         if (st.state == scene::LayerState::Ready && !sc.overlays.status.enabled) continue;
         std::string text = st.id + ": " + scene::layerStateName(st.state);

@@ -44,6 +44,9 @@ public:
      */
     Result<math::Viewpoint> viewpointAt(double time, const std::string& viewpoint) const;
 
+    /** @brief A line shown on screen until replaced (e.g. why a scenario edit was refused). */
+    void setNotice(std::string notice) { mNotice = std::move(notice); }
+
     /** @brief Select and load tiles for the view without drawing (render waits with this). */
     void prepare(const math::Camera& camera, double time) { mScene->update(camera, time); }
 
@@ -59,6 +62,7 @@ private:
     std::unique_ptr<scene::TerrainScene> mScene;
     std::optional<render::OverlayRenderer> mOverlay;
     int mOverlayFontPx = 0;
+    std::string mNotice;
     anim::CameraPath mPath;
     anim::TimeZone mZone;
     double mStart = 0, mEnd = 0;

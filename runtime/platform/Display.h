@@ -23,10 +23,20 @@ struct DisplayOptions {
     std::string connector;   ///< KMS: connector name ("HDMI-A-1") or index; empty: first connected
 };
 
-/** @brief What the user asked for through the window system since the last poll. */
+/**
+ * @brief What the user asked for through the window system since the last poll. Navigation
+ * requests accumulate until the consumer reads them and calls clearRequests().
+ */
 struct InputState {
     bool quitRequested = false;  ///< window closed, Escape or q pressed
     bool resized = false;
+    int orbit = 0;      ///< Left/Right arrows: -1 / +1 per press (heading)
+    int tilt = 0;       ///< Up/Down arrows: +1 / -1 per press (pitch)
+    int zoom = 0;       ///< +/-: +1 zooms in, -1 out
+    int step = 0;       ///< . / , : next / previous key frame
+    bool togglePause = false;  ///< space
+    bool home = false;         ///< h / Home: back to the scenario's camera
+    void clearRequests() { orbit = tilt = zoom = step = 0, togglePause = home = false; }
 };
 
 /**

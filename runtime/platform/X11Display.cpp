@@ -282,7 +282,25 @@ void X11Display::pollInput(InputState& state) {
                 break;
             case KeyPress: {
                 KeySym sym = XLookupKeysym(&ev.xkey, 0);
-                if (sym == XK_Escape || sym == XK_q) state.quitRequested = true;
+                switch (sym) {
+                    case XK_Escape:
+                    case XK_q: state.quitRequested = true; break;
+                    case XK_Left: --state.orbit; break;
+                    case XK_Right: ++state.orbit; break;
+                    case XK_Up: ++state.tilt; break;
+                    case XK_Down: --state.tilt; break;
+                    case XK_plus:
+                    case XK_equal:
+                    case XK_KP_Add: ++state.zoom; break;
+                    case XK_minus:
+                    case XK_KP_Subtract: --state.zoom; break;
+                    case XK_period: ++state.step; break;
+                    case XK_comma: --state.step; break;
+                    case XK_space: state.togglePause = !state.togglePause; break;
+                    case XK_h:
+                    case XK_Home: state.home = true; break;
+                    default: break;
+                }
                 break;
             }
             case ConfigureNotify:

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "runtime/color/TransferFunction.h"
 #include "runtime/render/Textures.h"
 #include "tests/support/EglTestContext.h"
 
@@ -44,6 +45,38 @@ TEST_F(OverlayRendererGLTest, RectTextAndImageStrip) {
     EXPECT_GT(img.pixel(11, 70)[0], 240);
     EXPECT_GT(img.pixel(188, 70)[2], 240);
     EXPECT_NEAR(img.pixel(100, 70)[0], 128, 4);
+}
+
+// Issue 5: one definition drives both the shader LUT and the legend, so the legend bar's pixels
+// are the transfer function's colours at the values the bar's ticks name.
+TEST_F(OverlayRendererGLTest, LegendBarPixelsAreTheTransferFunctionColours) {
+    constexpr int kW = 300, kH = 40, kBarX = 20, kBarW = 256;
+    auto rt = makeTarget(kW, kH);
+    auto overlay = OverlayRenderer::create(FontAtlas::defaultFontPath(), 14);
+    ASSERT_TRUE(overlay.ok()) << overlay.diagnostics.format();
+    color::TransferFunction tf;
+    tf.space = color::Space::Lab;
+    tf.stops = {{0.0, {0.83f, 0.96f, 0.98f, 1}}, {0.5, {0.42f, 0.68f, 0.84f, 1}},
+                {2.0, {0.13f, 0.44f, 0.71f, 1}}, {5.0, {0.03f, 0.19f, 0.42f, 1}}};
+    ASSERT_FALSE(tf.finalize(false, false, false).hasErrors());
+    const auto lut = color::buildLut(tf, color::kMinLutSize);
+    auto tex = makeLutTexture(int(lut.size() / 4), lut.data());
+    glClearColor(0, 0, 0, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    overlay->begin(kW, kH);
+    overlay->image(float(kBarX), 10, float(kBarW), 20, tex.id());
+    overlay->end();
+    EXPECT_GL_OK();
+    const auto img = rt.readColor();
+    for (int i = 0; i < kBarW; i += 5) {
+        const double t = (i + 0.5) / kBarW;
+        const color::Rgba want = tf.evaluate(tf.domainMin + t * (tf.domainMax - tf.domainMin));
+        const auto* p = img.pixel(kBarX + i, 20);
+        // 2 DN: 8-bit LUT rounding plus linear filtering between neighbouring LUT texels.
+        EXPECT_NEAR(p[0], want.r * 255.0f, 2.0f) << "at " << t;
+        EXPECT_NEAR(p[1], want.g * 255.0f, 2.0f) << "at " << t;
+        EXPECT_NEAR(p[2], want.b * 255.0f, 2.0f) << "at " << t;
+    }
 }
 
 TEST_F(OverlayRendererGLTest, MissingFontIsReportedNotFatal) {
