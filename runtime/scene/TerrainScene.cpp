@@ -314,7 +314,9 @@ void TerrainScene::uploadPayload(terrain::TileHandle handle, terrain::TilePayloa
     slot = GpuSlot{};
     std::size_t bytes = 0;
     if (payload.mesh) {
-        bytes = payload.mesh->byteSize();
+        // A tile whose data is all nodata but a sliver meshes to nothing; it still counts as
+        // resident (one byte), otherwise the selector would ask for it again every frame.
+        bytes = std::max<std::size_t>(payload.mesh->byteSize(), 1);
         if (!mCache->reserveGpu(handle, bytes)) return;
         slot.mesh = render::GpuMesh::upload(payload.mesh->vertices.data(), payload.mesh->vertices.size(),
                                             payload.mesh->indices.data(), payload.mesh->indices.size());
@@ -322,14 +324,14 @@ void TerrainScene::uploadPayload(terrain::TileHandle handle, terrain::TilePayloa
         payload.mesh->vertices = {};
         payload.mesh->indices = {};
     } else if (payload.image) {
-        bytes = payload.image->rgba.size() * 4 / 3;  // with mipmaps
+        bytes = std::max<std::size_t>(payload.image->rgba.size() * 4 / 3, 1);  // with mipmaps
         if (!mCache->reserveGpu(handle, bytes)) return;
         slot.texture = render::makeRgbaTexture(payload.image->width, payload.image->height,
                                                payload.image->rgba.data(), true);
         payload.image->rgba = {};
     } else if (payload.raster) {
         const auto& r = *payload.raster;
-        bytes = std::size_t(r.postsX) * std::size_t(r.postsY) * 4;  // RG16F
+        bytes = std::max<std::size_t>(std::size_t(r.postsX) * std::size_t(r.postsY) * 4, 1);  // RG16F
         if (!mCache->reserveGpu(handle, bytes)) return;
         std::optional<float> nodataAs;
         for (const auto& l : mLayers)
@@ -405,6 +407,11 @@ void TerrainScene::update(const math::Camera& camera, double time) {
     mSelection = &mSelector.select(camera, mStats, *mResidency);
     mFrame.requests = std::uint32_t(mSelection->requests.size());
     mLoader->submit(mSelection->requests);
+    if (!mSelection->requests.empty() && log::threshold() == log::Level::Debug) {
+        const auto& k = mSelection->requests.front().key;
+        KIOSK_LOG_DEBUG(kTag, "%zu requests, first layer %u frame %d tile %d/%d/%d", mSelection->requests.size(),
+                        unsigned(k.layer), k.frame, k.id.level, k.id.column, k.id.row);
+    }
     const bool requestsPending = !mSelection->requests.empty();
 
     for (std::size_t i = 0; i < mLayers.size(); ++i) {
