@@ -10,5 +10,20 @@ cd "$ROOT"
 export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/share/glvnd/egl_vendor.d/50_mesa.json
 export GALLIUM_DRIVER=llvmpipe
 "$BUILD/bench/bench-frame" scenarios/demo/rainier.json --frames ${KIOSK_BENCH_FRAMES:-60}
+# The seed paper's data set (Wahl 2004): Puget Sound 1025^2 at 160 m, terrain only.
+PUGET=$ROOT/../shared/data/puget_sound_heightmap/ps_height_1k.png
+if [[ -f "$PUGET" ]]; then
+    data=$BUILD/bench-data
+    mkdir -p "$data"
+    [[ -f "$data/puget.gpkg" ]] || "$BUILD/geokiosk" import elevation "$PUGET" --store "$data/puget.gpkg" \
+        --pixel-size 160 --z-scale 0.1 --quiet 2>/dev/null
+    cat >"$data/puget.json" <<'JSON'
+{ "version": 1, "title": "Puget Sound (benchmark)", "stores": { "p": "puget.gpkg" },
+  "terrain": { "store": "p", "tauGeom": 1, "tauTex": 1 }, "layers": [] }
+JSON
+    "$BUILD/bench/bench-frame" "$data/puget.json" --frames ${KIOSK_BENCH_FRAMES:-60}
+else
+    echo '{"benchmark":"frame","scenario":"puget","skipped":"../shared/data not present"}'
+fi
 "$BUILD/bench/bench-import"                 # 4k DEM vs gdal_translate + gdaladdo (--sizes 4096,16384)
 "$BUILD/bench/hillshade/hillshade_bench"    # 4k DEM vs gdaldem hillshade (--with-16k)
