@@ -28,8 +28,11 @@ uniform vec4 uClip;
 
 out vec4 fragColor;
 
-float lensMask(vec4 lens, float softEdge, vec2 p) {
-    vec2 d = (p - lens.xy) / max(lens.zw, vec2(1e-6));
+float lensMask(vec4 lens, vec2 rotation, float softEdge, vec2 p) {
+    vec2 q = p - lens.xy;
+    // Into the ellipse's frame: rotation = (cos, sin) of its counter-clockwise angle.
+    q = vec2(rotation.x * q.x + rotation.y * q.y, -rotation.y * q.x + rotation.x * q.y);
+    vec2 d = q / max(lens.zw, vec2(1e-6));
     float r = length(d);
     float edge = max(softEdge, 1e-6);
     return 1.0 - smoothstep(1.0 - edge, 1.0, r);
@@ -86,7 +89,8 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
           << ";\nuniform vec4 uLutBelow" << k << ";\nuniform vec4 uLutAbove" << k << ";\n";
     }
     for (std::size_t j = 0; j < desc.lenses.size(); ++j)
-        s << "uniform vec4 uLens" << j << ";\nuniform vec4 uLensParam" << j << ";\n";
+        s << "uniform vec4 uLens" << j << ";\nuniform vec4 uLensParam" << j
+          << ";\nuniform vec2 uLensRot" << j << ";\n";
 
     s << "\nvoid main() {\n"
          "    if (any(lessThan(vScenePos, uClip.xy)) || any(greaterThan(vScenePos, uClip.zw))) "
@@ -97,7 +101,7 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
     // Lens masks first: visibility lenses gate whole layers.
     for (std::size_t j = 0; j < desc.lenses.size(); ++j)
         s << "    float lens" << j << " = uLensParam" << j << ".w * lensMask(uLens" << j
-          << ", uLensParam" << j << ".x, vScenePos);\n";
+          << ", uLensRot" << j << ", uLensParam" << j << ".x, vScenePos);\n";
     // Every layer's sample is computed up front so Blend can reference any visibility layer.
     for (int i = 0; i < n; ++i) {
         const auto& l = desc.layers[std::size_t(i)];

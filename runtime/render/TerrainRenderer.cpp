@@ -50,7 +50,8 @@ Result<TerrainRenderer> TerrainRenderer::create(const CompositeProgramDesc& desc
     }
     r.mLuts.resize(std::size_t(desc.lutCount));
     for (std::size_t j = 0; j < desc.lenses.size(); ++j)
-        r.mLensLocs.push_back({loc("uLens" + std::to_string(j)), loc("uLensParam" + std::to_string(j))});
+        r.mLensLocs.push_back({loc("uLens" + std::to_string(j)), loc("uLensParam" + std::to_string(j)),
+                               loc("uLensRot" + std::to_string(j))});
     r.mLenses.resize(desc.lenses.size());
     const std::uint8_t grey[8] = {180, 180, 180, 255, 180, 180, 180, 255};
     r.setElevationLut(2, grey, 0.0f, 1.0f);
@@ -124,6 +125,8 @@ void TerrainRenderer::begin(const math::Camera& camera, const glm::dvec3& sceneO
         glUniform4f(mLensLocs[j][0], float(c.x), float(c.y), float(lens.radii.x), float(lens.radii.y));
         glUniform4f(mLensLocs[j][1], lens.softEdge, lens.insideGain, lens.outsideGain,
                     lens.enabled ? 1.0f : 0.0f);
+        const double a = glm::radians(lens.rotationDeg);
+        glUniform2f(mLensLocs[j][2], float(std::cos(a)), float(std::sin(a)));
     }
     for (int i = 0; i < int(mDesc.layers.size()); ++i) setLayer(i, {});
 }

@@ -56,6 +56,7 @@ struct LutBinding {
 struct LensBinding {
     glm::dvec2 centre{0.0};  ///< scene metres
     glm::dvec2 radii{1.0};
+    double rotationDeg = 0.0;  ///< ellipse, counter-clockwise from east
     float softEdge = 0.1f;   ///< fraction of the radius blended
     float insideGain = 1.3f;
     float outsideGain = 0.6f;
@@ -111,7 +112,7 @@ private:
     std::vector<LayerLoc> mLayerLocs;
     std::vector<LutLoc> mLutLocs;
     std::vector<LutBinding> mLuts;
-    std::vector<std::array<GLint, 2>> mLensLocs;
+    std::vector<std::array<GLint, 3>> mLensLocs;
     std::vector<LensBinding> mLenses;
     glm::dmat4 mProjection{1.0};
     glm::dvec3 mSceneOrigin{0.0};

@@ -525,6 +525,7 @@ void TerrainScene::bindLenses() {
         render::LensBinding b;
         b.centre = centre;
         b.radii = glm::max(radii, glm::dvec2(1e-3));
+        b.rotationDeg = lens.rotation;
         b.softEdge = float(std::clamp(lens.softEdge / std::max(b.radii.x, b.radii.y), 0.0, 1.0));
         b.insideGain = float(1.0 + lens.raise);
         b.outsideGain = float(1.0 - lens.lower);

@@ -273,6 +273,30 @@ TEST_F(LayerCompositingGLTest, VisibilityLensSwapsLayersInside) {
     EXPECT_DN_NEAR(render(*r, {bind(red), bind(blue)}, 1, 1), glm::ivec3(255, 0, 0));
 }
 
+TEST_F(LayerCompositingGLTest, RotatedEllipticalLensAndSoftEdge) {
+    CompositeProgramDesc desc{{}, {{LensKind::Highlight, -1, -1}}, 0};
+    auto r = TerrainRenderer::create(desc);
+    ASSERT_TRUE(r.ok()) << r.diagnostics.format();
+    LensBinding lens;
+    lens.centre = {500.0, 500.0};
+    lens.radii = {200.0, 60.0};  // long and thin...
+    lens.rotationDeg = 90.0;     // ...turned to run north-south
+    lens.softEdge = 0.3f;
+    lens.insideGain = 1.5f;
+    lens.outsideGain = 0.5f;
+    lens.enabled = true;
+    r->setLens(0, lens);
+    // The view is north-up, about 15.5 m per pixel around the centre pixel (16, 16).
+    EXPECT_DN_NEAR(render(*r, {}, 16, 16), dn(kBase * 1.5f));
+    EXPECT_DN_NEAR(render(*r, {}, 16, 10), dn(kBase * 1.5f));  // 93 m north: inside
+    EXPECT_DN_NEAR(render(*r, {}, 4, 16), dn(kBase * 0.5f));   // 186 m west: outside
+    EXPECT_DN_NEAR(render(*r, {}, 16, 0), dn(kBase * 0.5f));   // 248 m north: outside
+    // 171 m north is in the soft rim (r = 0.86 of the 200 m axis): strictly between the gains.
+    const glm::ivec3 rim = render(*r, {}, 16, 5);
+    EXPECT_LT(rim.b, dn(kBase * 1.5f).b - 5);
+    EXPECT_GT(rim.b, dn(kBase * 0.5f).b + 5);
+}
+
 TEST(LayerStackTest, TooManyLayersIsReported) {
     CompositeProgramDesc desc;
     for (int i = 0; i < 20; ++i) desc.layers.push_back({LayerKind::Thematic, LayerOp::Over, -1});
