@@ -10,6 +10,7 @@
 
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
+#include "runtime/app/Report.h"
 #include "runtime/app/Session.h"
 #include "runtime/app/Signals.h"
 #include "runtime/core/Clock.h"
@@ -36,10 +37,6 @@ int usage(const std::string& message) {
                  "[--frames N] [--connector NAME] [--drm-device PATH]\n",
                  message.c_str());
     return kExitUsage;
-}
-
-void printDiagnostics(const Diagnostics& d) {
-    for (const auto& item : d.items()) std::fprintf(stderr, "%s\n", item.format().c_str());
 }
 
 /** Modification stamps of the scenario and everything it includes. */

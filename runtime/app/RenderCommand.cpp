@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "runtime/app/Args.h"
+#include "runtime/app/Report.h"
 #include "runtime/app/FrameStats.h"
 #include "runtime/app/ImageOutput.h"
 #include "runtime/app/Session.h"
@@ -32,10 +33,6 @@ int usage(const std::string& message) {
                          "[--stats STATS.json]\n",
                  message.c_str());
     return kExitUsage;
-}
-
-void printDiagnostics(const Diagnostics& d) {
-    for (const auto& item : d.items()) std::fprintf(stderr, "%s\n", item.format().c_str());
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "runtime/app/Args.h"
+#include "runtime/app/Report.h"
 #include "runtime/core/ExitCode.h"
 #include "runtime/import/Topographic.h"
 
@@ -57,7 +58,7 @@ int runImportTopographic(const std::vector<std::string>& argv) {
     o.shadows = args.flag("shadows");
     o.quiet = args.flag("quiet");
     const Diagnostics d = import::importTopographic(o);
-    for (const auto& item : d.items()) std::fprintf(stderr, "%s\n", item.format().c_str());
+    printDiagnostics(d);
     if (d.hasErrors()) return kExitBadInput;
     if (!o.quiet) std::fprintf(stderr, "geokiosk: imported %s into %s\n", o.name.c_str(), o.store.c_str());
     return kExitOk;

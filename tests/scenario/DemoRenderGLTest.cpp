@@ -27,6 +27,14 @@ bool isSky(const std::uint8_t* p) {
     return std::abs(p[0] - 158) <= 2 && std::abs(p[1] - 181) <= 2 && std::abs(p[2] - 204) <= 2;
 }
 
+/** Let the loader bring every tile of `cam` at `time` (render's deterministic wait). */
+void settle(Session& s, const math::Camera& cam, double time) {
+    for (int k = 0; k < 30000 && (k == 0 || !s.terrain().settled()); ++k) {
+        s.prepare(cam, time);
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+}
+
 /** A void-free synthetic DEM (ridges and valleys, 20 m posts, UTM 10N) imported into a store. */
 class SyntheticTerrain : public test::EglTest {
 protected:
@@ -225,94 +233,6 @@ TEST_F(SyntheticTerrain, SequenceStepsAreAtomicWithASlowLoader) {
     EXPECT_GT(framesWithSequence, 50);
 }
 
-// The synthetic DEM's value at source pixel (col, row): what the store's posts hold.
-double syntheticHeight(double x, double y) {
-    return 800.0 + 300.0 * std::sin(x * 0.02) * std::cos(y * 0.015) +
-           120.0 * std::sin(x * 0.11 + y * 0.07) + 0.3 * x;
-}
-
-// Issue 4's guarantee: at tauGeom = 1 px, the rendered surface deviates from the full-resolution
-// surface by at most 1 px on screen. Every terrain pixel's position and elevation are read back
-// from a float target; the full-resolution surface (bilinear between the 20 m posts) is
-// evaluated at the same x, y; the vertical difference is projected at that pixel's distance
-// (a face-on projection: an upper bound of the oblique one).
-TEST_F(SyntheticTerrain, LodStaysWithinTauOfTheFullResolutionSurface) {
-    if (!mCaps.colorBufferFloat)
-        KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_GL", "no EXT_color_buffer_float: cannot read positions");
-    constexpr int W = 320, H = 200;
-    auto target = gl::RenderTarget::createFloat(W, H);
-    ASSERT_TRUE(target.ok()) << target.diagnostics.format();
-    auto s = open(writeScenario(""));
-    ASSERT_TRUE(s);
-    ASSERT_TRUE(s->terrain().setPositionOutput(true));
-    const io::TileGrid& grid = s->terrain().storeInfo().grid;
-    auto fullRes = [&](double X, double Y, bool& inside) {
-        const double fx = (X - 600000.0) / 20.0 - 0.5, fy = (5200000.0 - Y) / 20.0 - 0.5;
-        inside = fx >= 1 && fy >= 1 && fx <= 698 && fy <= 698;  // away from the data's edge
-        const double x0 = std::floor(fx), y0 = std::floor(fy), ax = fx - x0, ay = fy - y0;
-        return (1 - ay) * ((1 - ax) * syntheticHeight(x0, y0) + ax * syntheticHeight(x0 + 1, y0)) +
-               ay * ((1 - ax) * syntheticHeight(x0, y0 + 1) + ax * syntheticHeight(x0 + 1, y0 + 1));
-    };
-    const math::Viewpoint views[] = {
-        {glm::dvec3(607000, 5193000, 900), 30, -25, 6000},   // oblique: many levels at once
-        {glm::dvec3(605000, 5195000, 900), 300, -55, 2500},  // close: finest tiles
-        {glm::dvec3(607000, 5193000, 900), 120, -40, 16000},  // far: coarse tiles
-    };
-    std::uint64_t lodTriangles = 0;
-    for (const auto& vp : views) {
-        const math::Camera cam = makeCamera(vp, s->terrain().bounds(), W, H, 45);
-        for (int k = 0; k < 30000 && (k == 0 || !s->terrain().settled()); ++k) {
-            s->prepare(cam, s->startTime());
-            std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        }
-        ASSERT_TRUE(s->terrain().settled());
-        target->bind();
-        const FrameRecord rec = s->drawFrame(cam, s->startTime(), W, H);
-        lodTriangles += rec.triangles;
-        const std::vector<float> px = target->readFloat();
-        double worst = 0;
-        int measured = 0;
-        for (int i = 0; i < W * H; ++i) {
-            const float* p = &px[std::size_t(i) * 4];
-            if (p[3] != 2.0f) continue;  // sky
-            const double X = double(p[0]) + grid.minX, Y = double(p[1]) + grid.minY;
-            bool inside = false;
-            const double zFull = fullRes(X, Y, inside);
-            if (!inside) continue;
-            const double distance = glm::distance(cam.eye, glm::dvec3(X, Y, double(p[2])));
-            worst = std::max(worst, std::fabs(double(p[2]) - zFull) * cam.pixelsPerMetreAt(distance));
-            ++measured;
-        }
-        EXPECT_GT(measured, W * H / 4) << "view heading " << vp.headingDeg;
-        // Allowance 0.25 px: the store quantises posts to 1/32 m, the finest tiles' TIN keeps
-        // 0.1 m, and a triangle differs from the bilinear cell by a quarter of its twist.
-        EXPECT_LE(worst, 1.0 + 0.25) << "view heading " << vp.headingDeg << ": " << rec.tilesDrawn
-                                     << " tiles, " << rec.triangles << " triangles";
-        std::printf("view heading %.0f: worst screen-space error %.3f px over %d pixels, %llu triangles\n",
-                    vp.headingDeg, worst, measured, (unsigned long long)rec.triangles);
-    }
-    // And LOD is the point: the same views at full resolution cost more triangles.
-    auto full = Session::open(writeScenario(""), mCaps, [](config::Scenario& sc) {
-        sc.terrain.tauGeom = 0.0;
-        sc.terrain.tauTex = 0.0;
-    });
-    ASSERT_TRUE(full.ok()) << full.diagnostics.format();
-    std::uint64_t fullTriangles = 0;
-    auto rt8 = makeTarget(W, H);
-    for (const auto& vp : views) {
-        const math::Camera cam = makeCamera(vp, (*full)->terrain().bounds(), W, H, 45);
-        for (int k = 0; k < 30000 && (k == 0 || !(*full)->terrain().settled()); ++k) {
-            (*full)->prepare(cam, (*full)->startTime());
-            std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        }
-        rt8.bind();
-        fullTriangles += (*full)->drawFrame(cam, (*full)->startTime(), W, H).triangles;
-    }
-    EXPECT_LT(lodTriangles, fullTriangles);
-    std::printf("triangles: LOD %llu, full resolution %llu\n", (unsigned long long)lodTriangles,
-                (unsigned long long)fullTriangles);
-}
-
 /** Bilinear surface through a store's finest-level posts: the full-resolution reference. */
 class StoreSurface {
 public:
@@ -366,10 +286,7 @@ Fidelity measureFidelity(Session& s, gl::RenderTarget& target, const math::Viewp
                          const std::function<double(double, double)>& surface) {
     const int W = target.width(), H = target.height();
     const math::Camera cam = makeCamera(vp, s.terrain().bounds(), W, H, 45);
-    for (int k = 0; k < 3000 && (k == 0 || !s.terrain().settled()); ++k) {
-        s.prepare(cam, s.startTime());
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
+    settle(s, cam, s.startTime());
     EXPECT_TRUE(s.terrain().settled()) << s.terrain().frameInfo().requests << " requests pending";
     target.bind();
     Fidelity f;
@@ -389,16 +306,81 @@ Fidelity measureFidelity(Session& s, gl::RenderTarget& target, const math::Viewp
     return f;
 }
 
+// The synthetic DEM's value at source pixel (col, row): what the store's posts hold.
+double syntheticHeight(double x, double y) {
+    return 800.0 + 300.0 * std::sin(x * 0.02) * std::cos(y * 0.015) +
+           120.0 * std::sin(x * 0.11 + y * 0.07) + 0.3 * x;
+}
+
+// Issue 4's guarantee: at tauGeom = 1 px, the rendered surface deviates from the full-resolution
+// surface by at most 1 px on screen. Every terrain pixel's position and elevation are read back
+// from a float target; the full-resolution surface (bilinear between the 20 m posts) is
+// evaluated at the same x, y; the vertical difference is projected at that pixel's distance
+// (a face-on projection: an upper bound of the oblique one).
+TEST_F(SyntheticTerrain, LodStaysWithinTauOfTheFullResolutionSurface) {
+    if (!mCaps.colorBufferFloat)
+        KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_GL", "no EXT_color_buffer_float: cannot read positions");
+    constexpr int W = 320, H = 200;
+    auto target = gl::RenderTarget::createFloat(W, H);
+    ASSERT_TRUE(target.ok()) << target.diagnostics.format();
+    auto s = open(writeScenario(""));
+    ASSERT_TRUE(s);
+    ASSERT_TRUE(s->terrain().setPositionOutput(true));
+    auto fullRes = [&](double X, double Y, bool& inside) {
+        const double fx = (X - 600000.0) / 20.0 - 0.5, fy = (5200000.0 - Y) / 20.0 - 0.5;
+        inside = fx >= 1 && fy >= 1 && fx <= 698 && fy <= 698;  // away from the data's edge
+        const double x0 = std::floor(fx), y0 = std::floor(fy), ax = fx - x0, ay = fy - y0;
+        return (1 - ay) * ((1 - ax) * syntheticHeight(x0, y0) + ax * syntheticHeight(x0 + 1, y0)) +
+               ay * ((1 - ax) * syntheticHeight(x0, y0 + 1) + ax * syntheticHeight(x0 + 1, y0 + 1));
+    };
+    const math::Viewpoint views[] = {
+        {glm::dvec3(607000, 5193000, 900), 30, -25, 6000},   // oblique: many levels at once
+        {glm::dvec3(605000, 5195000, 900), 300, -55, 2500},  // close: finest tiles
+        {glm::dvec3(607000, 5193000, 900), 120, -40, 16000},  // far: coarse tiles
+    };
+    std::uint64_t lodTriangles = 0;
+    for (const auto& vp : views) {
+        const Fidelity f = measureFidelity(*s, *target, vp, [&](double x, double y) {
+            bool inside = false;
+            const double z = fullRes(x, y, inside);
+            return inside ? z : std::nan("");
+        });
+        lodTriangles += f.triangles;
+        EXPECT_GT(f.measured, W * H / 4) << "view heading " << vp.headingDeg;
+        // Allowance 0.25 px: the store quantises posts to 1/32 m, the finest tiles' TIN keeps
+        // 0.1 m, and a triangle differs from the bilinear cell by a quarter of its twist.
+        EXPECT_LE(f.worstPx, 1.0 + 0.25) << "view heading " << vp.headingDeg << ", " << f.triangles
+                                         << " triangles";
+        std::printf("view heading %.0f: worst screen-space error %.3f px over %d pixels, %llu triangles\n",
+                    vp.headingDeg, f.worstPx, f.measured, (unsigned long long)f.triangles);
+    }
+    // And LOD is the point: the same views at full resolution cost more triangles.
+    auto full = Session::open(writeScenario(""), mCaps, [](config::Scenario& sc) {
+        sc.terrain.tauGeom = 0.0;
+        sc.terrain.tauTex = 0.0;
+    });
+    ASSERT_TRUE(full.ok()) << full.diagnostics.format();
+    std::uint64_t fullTriangles = 0;
+    auto rt8 = makeTarget(W, H);
+    for (const auto& vp : views) {
+        const math::Camera cam = makeCamera(vp, (*full)->terrain().bounds(), W, H, 45);
+        settle(**full, cam, (*full)->startTime());
+        rt8.bind();
+        fullTriangles += (*full)->drawFrame(cam, (*full)->startTime(), W, H).triangles;
+    }
+    EXPECT_LT(lodTriangles, fullTriangles);
+    std::printf("triangles: LOD %llu, full resolution %llu\n", (unsigned long long)lodTriangles,
+                (unsigned long long)fullTriangles);
+}
+
 // The same guarantee over the seed paper's real data set (Puget Sound, 160 m posts).
-TEST(RealTerrain, PugetSoundLodStaysWithinTau) {
+class RealTerrain : public test::EglTest {};
+class DemoScenario : public test::EglTest {};
+
+TEST_F(RealTerrain, PugetSoundLodStaysWithinTau) {
     const std::string puget = test::sharedData("puget_sound_heightmap/ps_height_1k.png");
     if (puget.empty()) KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_DATA", "../shared/data not present");
-    platform::DisplayOptions o;
-    o.kind = platform::DisplayKind::Headless;
-    auto display = platform::createDisplay(o);
-    if (!display) KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_GL", display.diagnostics.format());
-    auto caps = gl::initContext();
-    ASSERT_TRUE(caps.ok());
+    const gl::Caps* caps = &mCaps;
     if (!caps->colorBufferFloat) KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_GL", "no EXT_color_buffer_float");
     const fs::path dir = fs::temp_directory_path() / ("kiosk-puget-" + std::to_string(::getpid()));
     fs::create_directories(dir);
@@ -438,15 +420,10 @@ TEST(RealTerrain, PugetSoundLodStaysWithinTau) {
 }
 
 // The bundled demo (built by tools/prepare-demo.sh, which the quick start runs first).
-TEST(DemoScenario, RendersTheGolden) {
+TEST_F(DemoScenario, RendersTheGolden) {
     if (!fs::exists("data/generated/rainier.gpkg"))
         KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_DATA", "demo store missing: run tools/prepare-demo.sh");
-    platform::DisplayOptions o;
-    o.kind = platform::DisplayKind::Headless;
-    auto display = platform::createDisplay(o);
-    if (!display) KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_GL", display.diagnostics.format());
-    auto caps = gl::initContext();
-    ASSERT_TRUE(caps.ok());
+    const gl::Caps* caps = &mCaps;
     auto rt = gl::RenderTarget::create(480, 270);
     ASSERT_TRUE(rt.ok());
     auto s = Session::open("scenarios/demo/rainier.json", *caps);
@@ -456,10 +433,7 @@ TEST(DemoScenario, RendersTheGolden) {
     auto vp = session.viewpointAt(t, "");
     ASSERT_TRUE(vp.ok());
     const math::Camera cam = makeCamera(*vp, session.terrain().bounds(), 480, 270, 45);
-    for (int k = 0; k < 20000 && (k == 0 || !session.terrain().settled()); ++k) {
-        session.prepare(cam, t);
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
+    settle(session, cam, t);
     rt->bind();
     const FrameRecord rec = session.drawFrame(cam, t, 480, 270);
     EXPECT_GT(rec.tilesDrawn, 0u);
