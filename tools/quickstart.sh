@@ -67,7 +67,7 @@ demo)
         out="$ROOT/out/demo"
         echo "quickstart: no display here; rendering the demo headless to PNG frames instead"
         mkdir -p "$out"
-        "$BUILD/geokiosk" render "$scenario" --out "$out/" --from +0 --to +6h --fps 2 \
+        "$BUILD/geokiosk" render "$scenario" --out "$out/" --from +0 --to +9h --fps 2 \
             --size 1280x720 --stats "$out/stats.json"
         echo "quickstart: frames written to $out/ (000001.png ...), statistics in $out/stats.json"
     elif [[ $status -ne 0 ]]; then

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <thread>
 
+#include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
 #include "runtime/app/Report.h"
 #include "runtime/app/FrameStats.h"
@@ -110,8 +111,13 @@ int runRenderCommand(const std::vector<std::string>& argv) {
     if (range) {
         const double t0 = from->resolve(s.startTime()), t1 = to->resolve(s.startTime());
         if (t1 < t0) return usage("--to is before --from");
-        const auto n = static_cast<long>(std::floor((t1 - t0) * fps + 1e-9));
-        for (long i = 0; i <= n; ++i) times.push_back(t0 + double(i) / fps);
+        // --fps counts frames per second of *playback*: the scenario clock's rate (data
+        // seconds per wall second) sets how much data time each frame advances.
+        const double rate = s.scenario().clock && s.scenario().clock->rate != 0
+                                ? std::fabs(s.scenario().clock->rate)
+                                : 1.0;
+        const std::int64_t n = anim::frameCount(t0, t1, fps, rate);
+        for (std::int64_t i = 0; i < n; ++i) times.push_back(anim::timeForFrame(t0, t1, fps, i, rate));
     } else {
         times.push_back(at ? at->resolve(s.startTime()) : s.startTime());
     }

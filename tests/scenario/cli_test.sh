@@ -63,8 +63,10 @@ else echo "FAIL: two renders of the same time differ"; fail=$((fail + 1)); fi
 if grep -q '"tiles_drawn"' "$tmp/s.json" && grep -q '"p99"' "$tmp/s.json"; then
     echo "ok:   --stats has per-frame arrays and a summary"; pass=$((pass + 1))
 else echo "FAIL: --stats JSON incomplete"; fail=$((fail + 1)); fi
-expect 0 "wrote 3 frames" "$GK" render $DEMO --out "$tmp/seq/" --from +0 --to +1h --fps 0.000833333 --size 160x90
-[[ -f "$tmp/seq/000003.png" ]] && { echo "ok:   frame files numbered"; pass=$((pass + 1)); } || { echo "FAIL: no $tmp/seq/000003.png"; fail=$((fail + 1)); }
+# The demo clock runs 1200 data seconds per second: one hour is 3 s of playback, 3 frames at 1 fps
+# plus the closing frame.
+expect 0 "wrote 4 frames" "$GK" render $DEMO --out "$tmp/seq/" --from +0 --to +1h --fps 1 --size 160x90
+[[ -f "$tmp/seq/000004.png" ]] && { echo "ok:   frame files numbered"; pass=$((pass + 1)); } || { echo "FAIL: no $tmp/seq/000004.png"; fail=$((fail + 1)); }
 
 echo "$pass passed, $fail failed"
 [[ $fail -eq 0 ]]
