@@ -311,14 +311,7 @@ Result<PlannedSource> planGrid(GdalDataset source, const PlaceOptions& opt, int 
     g.maxY = gt[3];
     g.maxX = g.minX + size;
     g.minY = g.maxY - size;
-    for (int l = 0; l < levels; ++l) {
-        io::TileMatrix m;
-        m.level = l;
-        m.matrixWidth = m.matrixHeight = 1 << l;
-        m.tileWidth = m.tileHeight = tileSize;
-        m.pixelXSize = m.pixelYSize = p * double(1 << (levels - 1 - l));
-        g.levels.push_back(m);
-    }
+    g.setPyramid(levels, tileSize, tileSize, p);
     out.placed.ds = placed;
     out.placed.window = {0, 0, width, height};
     return out;

@@ -591,14 +591,7 @@ Diagnostics importSww(const std::string& source, const ImportOptions& o) {
             const double size = p * double(std::int64_t(o.tileSize) << (levels - 1));
             g.maxX = minX + size;
             g.minY = maxY - size;
-            for (int l = 0; l < levels; ++l) {
-                io::TileMatrix m;
-                m.level = l;
-                m.matrixWidth = m.matrixHeight = 1 << l;
-                m.tileWidth = m.tileHeight = o.tileSize;
-                m.pixelXSize = m.pixelYSize = p * double(1 << (levels - 1 - l));
-                g.levels.push_back(m);
-            }
+            g.setPyramid(levels, o.tileSize, o.tileSize, p);
             e.append(w.defineGrid(g));
             if (e.hasErrors()) return e;
         }

@@ -117,15 +117,7 @@ Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
         d.error("STORE_NOT_GEOKIOSK", mInfo.path, kGridTable, "tile grid is invalid");
         return d;
     }
-    for (int l = 0; l < levels; ++l) {
-        TileMatrix m;
-        m.level = l;
-        m.matrixWidth = m.matrixHeight = 1 << l;
-        m.tileWidth = tw;
-        m.tileHeight = th;
-        m.pixelXSize = m.pixelYSize = finest * double(1 << (levels - 1 - l));
-        grid.levels.push_back(m);
-    }
+    grid.setPyramid(levels, tw, th, finest);
 
     auto ls = mDb.prepare(
         "SELECT l.table_name, l.kind, l.units, l.min_value, l.max_value, l.nodata, "

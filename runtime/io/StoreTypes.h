@@ -31,6 +31,22 @@ struct TileGrid {
     std::vector<TileMatrix> levels;                 ///< index == level
 
     int maxLevel() const { return static_cast<int>(levels.size()) - 1; }
+    /**
+     * @brief Replace `levels` with a full pyramid: level l is 2^l x 2^l tiles of
+     * tileWidth x tileHeight pixels, each pixel finestPixelSize * 2^(levelCount - 1 - l).
+     */
+    void setPyramid(int levelCount, int tileWidth, int tileHeight, double finestPixelSize) {
+        levels.clear();
+        for (int l = 0; l < levelCount; ++l) {
+            TileMatrix m;
+            m.level = l;
+            m.matrixWidth = m.matrixHeight = 1 << l;
+            m.tileWidth = tileWidth;
+            m.tileHeight = tileHeight;
+            m.pixelXSize = m.pixelYSize = finestPixelSize * double(1 << (levelCount - 1 - l));
+            levels.push_back(m);
+        }
+    }
     /** @brief CRS bounds of a tile: x grows east, y north; row 0 is the northernmost. */
     void tileBounds(const TileId& id, double& x0, double& y0, double& x1, double& y1) const {
         const TileMatrix& m = levels[std::size_t(id.level)];

@@ -147,15 +147,7 @@ Diagnostics StoreWriter::loadGrid() {
     const double finest = st->columnDouble(8);
     g.crsName = st->columnText(9);
     g.crsWkt = st->columnText(10);
-    for (int l = 0; l < levels; ++l) {
-        TileMatrix m;
-        m.level = l;
-        m.matrixWidth = m.matrixHeight = 1 << l;
-        m.tileWidth = tw;
-        m.tileHeight = th;
-        m.pixelXSize = m.pixelYSize = finest * double(1 << (levels - 1 - l));
-        g.levels.push_back(m);
-    }
+    g.setPyramid(levels, tw, th, finest);
     mGrid = g;
     return d;
 }

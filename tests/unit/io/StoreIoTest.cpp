@@ -38,14 +38,7 @@ TileGrid smallGrid(int levels) {
     const double size = finest * kT * (1 << (levels - 1));
     g.maxX = g.minX + size;
     g.minY = g.maxY - size;
-    for (int l = 0; l < levels; ++l) {
-        TileMatrix m;
-        m.level = l;
-        m.matrixWidth = m.matrixHeight = 1 << l;
-        m.tileWidth = m.tileHeight = kT;
-        m.pixelXSize = m.pixelYSize = finest * (1 << (levels - 1 - l));
-        g.levels.push_back(m);
-    }
+    g.setPyramid(levels, kT, kT, finest);
     return g;
 }
 

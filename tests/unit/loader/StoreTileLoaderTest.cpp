@@ -31,13 +31,7 @@ public:
         g.minY = 5000000;
         g.maxX = g.minX + 4096;
         g.maxY = g.minY + 4096;
-        for (int l = 0; l < 3; ++l) {
-            io::TileMatrix m;
-            m.level = l;
-            m.matrixWidth = m.matrixHeight = 1 << l;
-            m.pixelXSize = m.pixelYSize = 16.0 / double(1 << l);
-            g.levels.push_back(m);
-        }
+        g.setPyramid(3, 256, 256, 4.0);  // 16 m pixels at level 0
         mInfo.layers.push_back(io::LayerInfo{"elevation",
                                              io::LayerKind::Elevation,
                                              "m",

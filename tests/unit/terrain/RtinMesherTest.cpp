@@ -322,13 +322,7 @@ TEST(RtinMesher, BuildTileMeshUsesLevelToleranceAndTileOrigin) {
     io::TileGrid grid;
     grid.minX = 500000;
     grid.maxY = 5200000;
-    for (int l = 0; l < 3; ++l) {
-        io::TileMatrix m;
-        m.level = l;
-        m.matrixWidth = m.matrixHeight = 1 << l;
-        m.pixelXSize = m.pixelYSize = 40.0 / (1 << l);
-        grid.levels.push_back(m);
-    }
+    grid.setPyramid(3, 256, 256, 10.0);  // 40 m pixels at level 0
     io::RasterTile tile = makeTile(257, bowl);
     tile.id = TileId{1, 1, 0};
     tile.stats.geometricError = 3.0f;

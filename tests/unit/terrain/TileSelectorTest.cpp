@@ -38,13 +38,7 @@ io::TileGrid makeGrid(int levels) {
     g.minY = 0;
     g.maxX = kExtent;
     g.maxY = kExtent;
-    for (int l = 0; l < levels; ++l) {
-        io::TileMatrix m;
-        m.level = l;
-        m.matrixWidth = m.matrixHeight = 1 << l;
-        m.pixelXSize = m.pixelYSize = 16.0 / double(1 << l);
-        g.levels.push_back(m);
-    }
+    g.setPyramid(levels, 256, 256, 16.0 / double(1 << (levels - 1)));  // 16 m at level 0
     return g;
 }
 
