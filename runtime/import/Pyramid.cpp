@@ -150,6 +150,18 @@ std::int64_t estimateTiles(const io::TileGrid& grid, const GridWindow& window) {
     return n;
 }
 
+/** A tile was written: count it, report progress, honour the failure-injection test hook. */
+static bool countTile(PyramidResult& res, const PyramidOptions& opt, Diagnostics& diag) {
+    ++res.tiles;
+    if (opt.progress) opt.progress->advance();
+    if (opt.failAfterTiles >= 0 && res.tiles >= opt.failAfterTiles) {
+        diag.error("IMPORT_INJECTED_FAILURE", opt.sourceName, opt.table,
+                   "failure injected after " + std::to_string(res.tiles) + " tiles");
+        return false;
+    }
+    return true;
+}
+
 Result<PyramidResult> buildScalarPyramid(io::StoreWriter& writer, const io::TileGrid& grid,
                                          const GridWindow& window, const ScalarRowSource& source,
                                          const PyramidOptions& opt) {
@@ -182,13 +194,7 @@ Result<PyramidResult> buildScalarPyramid(io::StoreWriter& writer, const io::Tile
                              "value range of a tile exceeds 16 bits at the chosen precision; "
                              "values clamped");
             }
-            ++res.tiles;
-            if (opt.progress) opt.progress->advance();
-            if (opt.failAfterTiles >= 0 && res.tiles >= opt.failAfterTiles) {
-                diag.error("IMPORT_INJECTED_FAILURE", opt.sourceName, opt.table,
-                           "failure injected after " + std::to_string(res.tiles) + " tiles");
-                return false;
-            }
+            if (!countTile(res, opt, diag)) return false;
         }
         return true;
     };
@@ -395,13 +401,7 @@ Result<PyramidResult> buildImageryPyramid(io::StoreWriter& writer, const io::Til
             if (j.blob.empty()) continue;
             diag.append(writer.putImageTile(opt.table, j.id, j.blob));
             if (diag.hasErrors()) return false;
-            ++res.tiles;
-            if (opt.progress) opt.progress->advance();
-            if (opt.failAfterTiles >= 0 && res.tiles >= opt.failAfterTiles) {
-                diag.error("IMPORT_INJECTED_FAILURE", opt.sourceName, opt.table,
-                           "failure injected after " + std::to_string(res.tiles) + " tiles");
-                return false;
-            }
+            if (!countTile(res, opt, diag)) return false;
         }
         return true;
     };
