@@ -49,6 +49,15 @@ Result<TerrainRenderer> TerrainRenderer::create(const CompositeProgramDesc& desc
                               loc("uLutNodata" + n), loc("uLutBelow" + n), loc("uLutAbove" + n)});
     }
     r.mLuts.resize(std::size_t(desc.lutCount));
+    // Unit layout: 0 elevation LUT, 1..lutCount transfer LUTs, then layers (sequence layers take
+    // two consecutive units). A data layer's LUT is its rank among data/sequence layers.
+    int unit = 1 + desc.lutCount, lutRank = 0;
+    for (const auto& l : desc.layers) {
+        const bool scalar = l.kind == LayerKind::Data || l.kind == LayerKind::Sequence;
+        r.mLayerSlots.push_back({unit, scalar ? lutRank : 0});
+        unit += l.kind == LayerKind::Sequence ? 2 : 1;
+        lutRank += scalar ? 1 : 0;
+    }
     for (std::size_t j = 0; j < desc.lenses.size(); ++j)
         r.mLensLocs.push_back({loc("uLens" + std::to_string(j)), loc("uLensParam" + std::to_string(j)),
                                loc("uLensRot" + std::to_string(j))});
@@ -73,15 +82,6 @@ void TerrainRenderer::setLut(int index, const LutBinding& lut) {
 
 void TerrainRenderer::setLens(int index, const LensBinding& lens) {
     if (index >= 0 && index < int(mLenses.size())) mLenses[std::size_t(index)] = lens;
-}
-
-// Unit layout: 0 elevation LUT, 1..lutCount transfer LUTs, then layers (sequence layers take
-// two consecutive units).
-int TerrainRenderer::layerUnit(int i) const {
-    int unit = 1 + mDesc.lutCount;
-    for (int j = 0; j < i; ++j)
-        unit += mDesc.layers[std::size_t(j)].kind == LayerKind::Sequence ? 2 : 1;
-    return unit;
 }
 
 void TerrainRenderer::begin(const math::Camera& camera, const glm::dvec3& sceneOrigin,
@@ -134,7 +134,7 @@ void TerrainRenderer::begin(const math::Camera& camera, const glm::dvec3& sceneO
 void TerrainRenderer::setLayer(int index, const LayerBinding& b) {
     if (index < 0 || index >= int(mLayerLocs.size())) return;
     const auto& l = mLayerLocs[std::size_t(index)];
-    const int unit = layerUnit(index);
+    const int unit = mLayerSlots[std::size_t(index)].unit;
     glActiveTexture(GLenum(GL_TEXTURE0 + unit));
     glBindTexture(GL_TEXTURE_2D, b.valid && b.texture ? b.texture : mNeutral.id());
     glUniform1i(l.tex, unit);
@@ -146,16 +146,8 @@ void TerrainRenderer::setLayer(int index, const LayerBinding& b) {
     // uv = (scenePos - (west, north)) * (1/width, -1/height): row 0 of a texture is its north edge.
     glUniform4f(l.rect, float(b.west - mSceneOrigin.x), float(b.north - mSceneOrigin.y),
                 float(1.0 / b.width), float(-1.0 / b.height));
-    const int lut = [&] {
-        // The LUT index of a data layer is its rank among data/sequence layers.
-        int k = 0;
-        for (int j = 0; j < index; ++j) {
-            const auto kind = mDesc.layers[std::size_t(j)].kind;
-            k += kind == LayerKind::Data || kind == LayerKind::Sequence;
-        }
-        return k;
-    }();
-    glUniform4f(l.param, b.strength, b.alpha, float(lut), b.valid ? 1.0f : 0.0f);
+    glUniform4f(l.param, b.strength, b.alpha, float(mLayerSlots[std::size_t(index)].lut),
+                b.valid ? 1.0f : 0.0f);
 }
 
 void TerrainRenderer::draw(const GpuMesh& mesh, const glm::dvec3& origin, bool fromAncestor) {

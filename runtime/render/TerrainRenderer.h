@@ -101,7 +101,10 @@ private:
     struct LutLoc {
         GLint tex = -1, domain = -1, size = -1, nodata = -1, below = -1, above = -1;
     };
-    int layerUnit(int i) const;
+    struct LayerSlot {
+        int unit = 0;  ///< first texture unit of the layer
+        int lut = 0;   ///< transfer LUT index (data and sequence layers)
+    };
 
     CompositeProgramDesc mDesc;
     gl::Program mProgram;
@@ -110,6 +113,7 @@ private:
     float mElevLutSize = 1.0f;
     glm::vec2 mElevDomain{0.0f, 1.0f};
     std::vector<LayerLoc> mLayerLocs;
+    std::vector<LayerSlot> mLayerSlots;  ///< fixed by the program, computed once in create()
     std::vector<LutLoc> mLutLocs;
     std::vector<LutBinding> mLuts;
     std::vector<std::array<GLint, 3>> mLensLocs;
