@@ -49,7 +49,8 @@ struct Terrain {
     std::string pointer = "/terrain";
 };
 
-enum class LayerKind { Thematic, Luminance, Topographic, Visibility, Data, Sequence };
+/// Normals: a normal-map layer lit by the scenario's (moving) sun, hybrid with mesh shading.
+enum class LayerKind { Thematic, Luminance, Topographic, Visibility, Data, Sequence, Normals };
 /** @brief How a layer combines with the result of the layers below it (Döllner's operations). */
 enum class OperationType {
     Opacity,   ///< alpha-over with a constant opacity (the default)

@@ -451,7 +451,8 @@ const EnumTable<LayerKind> kLayerKinds = {{"thematic", LayerKind::Thematic},
                                           {"topographic", LayerKind::Topographic},
                                           {"visibility", LayerKind::Visibility},
                                           {"data", LayerKind::Data},
-                                          {"sequence", LayerKind::Sequence}};
+                                          {"sequence", LayerKind::Sequence},
+                                          {"normals", LayerKind::Normals}};
 const EnumTable<OperationType> kOperations = {
     {"opacity", OperationType::Opacity}, {"blend", OperationType::Blend},
     {"add", OperationType::Add},         {"modulate", OperationType::Modulate},

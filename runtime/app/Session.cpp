@@ -155,7 +155,9 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     style.elevationLutWeight = 0.0f;
     style.baseColor = glm::vec4(0.78f, 0.78f, 0.76f, 1.0f);
     for (const auto& l : sc.layers)
-        if (l.enabled && l.kind == config::LayerKind::Topographic) style.geometryLighting = 0.0f;
+        if (l.enabled && (l.kind == config::LayerKind::Topographic || l.kind == config::LayerKind::Normals))
+            style.geometryLighting = 0.0f;
+    style.tauTex = float(sc.terrain.tauTex);
     mScene->draw(camera, style);
     drawOverlays(time, width, height);
 
