@@ -1,4 +1,5 @@
 #include "runtime/app/Session.h"
+#include "runtime/app/SolarLighting.h"
 
 #include <algorithm>
 #include <cmath>
@@ -148,6 +149,10 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
             az += a * (keys[i + 1].sunAzimuth - az);
             alt += a * (keys[i + 1].sunAltitude - alt);
         }
+    }
+    if (auto sun = solarSun(sc.lighting, mScene->storeInfo(), sc.terrain.elevation, time)) {
+        az = sun->azimuthDeg;  // lighting.solar: where the sun is at the data time
+        alt = sun->altitudeDeg;
     }
     style.lightDir = render::sunDirection(az, alt);
     style.ambient = float(sc.lighting.ambient);

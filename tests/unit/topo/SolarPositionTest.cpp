@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "runtime/core/TimeParse.h"
+#include "runtime/topo/Geographic.h"
 #include "runtime/topo/SolarPosition.h"
 
 namespace kiosk::topo {
@@ -67,6 +68,37 @@ TEST(SolarPositionTest, BadInputGivesNoSun) {
     EXPECT_EQ(solarPosition(NAN, 10, 10).altitudeDeg, -90.0);
     EXPECT_EQ(solarPosition(0, 91, 10).altitudeDeg, -90.0);
     EXPECT_EQ(solarPosition(0, 10, INFINITY).altitudeDeg, -90.0);
+}
+
+}  // namespace
+}  // namespace kiosk::topo
+
+namespace kiosk::topo {
+namespace {
+
+// Reference values from PROJ (gdaltransform -s_srs EPSG:326xx/327xx -t_srs EPSG:4326).
+TEST(GeographicTest, UtmInverseMatchesProj) {
+    struct Case { int epsg; double x, y, lon, lat; };
+    const Case cases[] = {
+        {32610, 594500, 5189560, -121.760389932156, 46.8528681966363},  // Mount Rainier
+        {32610, 500000, 0, -123.0, 0.0},
+        {32610, 700000, 5100000, -120.415934879615, 46.0243533958229},
+        {32610, 300000, 1000000, -124.819522508767, 9.04204706640632},
+        {32733, 400000, 6000000, 13.8885219677738, -36.1395604498603},
+    };
+    for (const Case& c : cases) {
+        auto p = geographicOf(c.epsg, c.x, c.y);
+        ASSERT_TRUE(p.has_value()) << c.epsg;
+        EXPECT_NEAR(p->latitudeDeg, c.lat, 1e-6) << c.epsg << " " << c.x << " " << c.y;
+        EXPECT_NEAR(p->longitudeDeg, c.lon, 1e-6) << c.epsg << " " << c.x << " " << c.y;
+    }
+    auto g = geographicOf(4326, -121.5, 46.5);
+    ASSERT_TRUE(g.has_value());
+    EXPECT_EQ(g->latitudeDeg, 46.5);
+    EXPECT_EQ(g->longitudeDeg, -121.5);
+    EXPECT_FALSE(geographicOf(3857, 0, 0).has_value());
+    EXPECT_FALSE(geographicOf(32610, NAN, 0).has_value());
+    EXPECT_FALSE(geographicOf(4326, 0, 95).has_value());
 }
 
 }  // namespace
