@@ -1,9 +1,9 @@
 #include "runtime/app/SolarLighting.h"
 
-#include <atomic>
-
 #include "runtime/core/Log.h"
 #include "runtime/topo/SolarPosition.h"
+
+#include <atomic>
 
 namespace kiosk::app {
 
@@ -11,7 +11,8 @@ std::optional<topo::LatLon> solarSite(const config::Lighting& lighting, const io
                                       const std::string& elevationLayer) {
     if (lighting.latitude && lighting.longitude)
         return topo::LatLon{*lighting.latitude, *lighting.longitude};
-    double x = 0.5 * (store.grid.minX + store.grid.maxX), y = 0.5 * (store.grid.minY + store.grid.maxY);
+    double x = 0.5 * (store.grid.minX + store.grid.maxX),
+           y = 0.5 * (store.grid.minY + store.grid.maxY);
     if (const io::LayerInfo* l = store.findLayer(elevationLayer);
         l && l->dataMaxX > l->dataMinX && l->dataMaxY > l->dataMinY) {
         x = 0.5 * (l->dataMinX + l->dataMaxX);

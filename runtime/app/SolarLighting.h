@@ -1,11 +1,11 @@
 #pragma once
 
-#include <optional>
-#include <string>
-
 #include "config/Scenario.h"
 #include "runtime/io/StoreTypes.h"
 #include "runtime/topo/Geographic.h"
+
+#include <optional>
+#include <string>
 
 namespace kiosk::app {
 

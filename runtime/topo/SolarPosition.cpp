@@ -49,7 +49,8 @@ SolarPosition solarPosition(double unixSeconds, double latitudeDeg, double longi
     const double trueLong = L0 + C;
     const double omega = (125.04 - 1934.136 * T) * kDeg;
     const double lambda = (trueLong - 0.00569 - 0.00478 * std::sin(omega)) * kDeg;
-    const double eps0 = 23.0 + (26.0 + (21.448 - T * (46.815 + T * (0.00059 - T * 0.001813))) / 60.0) / 60.0;
+    const double eps0 =
+        23.0 + (26.0 + (21.448 - T * (46.815 + T * (0.00059 - T * 0.001813))) / 60.0) / 60.0;
     const double eps = (eps0 + 0.00256 * std::cos(omega)) * kDeg;
     const double decl = std::asin(std::sin(eps) * std::sin(lambda));
     const double y = std::pow(std::tan(eps / 2), 2);
@@ -64,13 +65,13 @@ SolarPosition solarPosition(double unixSeconds, double latitudeDeg, double longi
     const double tst = std::fmod(dayMinutes + eot + 4.0 * longitudeDeg + 2880.0, 1440.0);
     const double ha = (tst / 4.0 - 180.0) * kDeg;  // hour angle, 0 at apparent noon
     const double lat = latitudeDeg * kDeg;
-    const double cosZen = std::clamp(std::sin(lat) * std::sin(decl) +
-                                         std::cos(lat) * std::cos(decl) * std::cos(ha),
-                                     -1.0, 1.0);
+    const double cosZen = std::clamp(
+        std::sin(lat) * std::sin(decl) + std::cos(lat) * std::cos(decl) * std::cos(ha), -1.0, 1.0);
     const double zen = std::acos(cosZen);
     // Azimuth from north, clockwise: atan2 of the east and north components of the sun.
     const double east = -std::cos(decl) * std::sin(ha);
-    const double north = std::cos(lat) * std::sin(decl) - std::sin(lat) * std::cos(decl) * std::cos(ha);
+    const double north =
+        std::cos(lat) * std::sin(decl) - std::sin(lat) * std::cos(decl) * std::cos(ha);
     p.azimuthDeg = wrap360(std::atan2(east, north) / kDeg);
     p.altitudeDeg = 90.0 - zen / kDeg;
     if (refraction) p.altitudeDeg += refractionDeg(p.altitudeDeg);

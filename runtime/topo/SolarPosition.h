@@ -4,9 +4,9 @@ namespace kiosk::topo {
 
 /** @brief Where the sun is for an observer (degrees). */
 struct SolarPosition {
-    double azimuthDeg = 0;      ///< clockwise from north, [0, 360)
-    double altitudeDeg = 0;     ///< above the horizon; with refraction if requested
-    double declinationDeg = 0;  ///< apparent declination
+    double azimuthDeg = 0;         ///< clockwise from north, [0, 360)
+    double altitudeDeg = 0;        ///< above the horizon; with refraction if requested
+    double declinationDeg = 0;     ///< apparent declination
     double equationOfTimeMin = 0;  ///< apparent minus mean solar time, minutes
 };
 

@@ -1,18 +1,18 @@
 // Normal-map layers lit at run time (issue 7): Lambert of the decoded normal map equals Lambert
 // of the analytic normal within 2 DN; nodata stays transparent; the hybrid switch to geometry
 // shading near the camera is continuous over distance and over the screen.
+#include "runtime/render/NormalShading.h"
+#include "runtime/render/TerrainRenderer.h"
+#include "runtime/render/Textures.h"
+#include "runtime/topo/NormalMap.h"
+#include "tests/support/EglTestContext.h"
+#include "tests/support/MeshFixtures.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
-
-#include "runtime/render/NormalShading.h"
-#include "runtime/render/Textures.h"
-#include "runtime/render/TerrainRenderer.h"
-#include "runtime/topo/NormalMap.h"
-#include "tests/support/EglTestContext.h"
-#include "tests/support/MeshFixtures.h"
 
 namespace kiosk::render {
 namespace {
@@ -57,7 +57,8 @@ protected:
         return target.readColor();
     }
 
-    static TerrainStyle style(glm::vec3 light, float ambient, float tauTex, glm::vec3 base = glm::vec3(1.0f)) {
+    static TerrainStyle style(glm::vec3 light, float ambient, float tauTex,
+                              glm::vec3 base = glm::vec3(1.0f)) {
         TerrainStyle s;
         s.geometryLighting = 0.0f;
         s.elevationLutWeight = 0.0f;
@@ -127,7 +128,10 @@ TEST_F(NormalShadingGLTest, LambertOfNormalMapEqualsLambertOfAnalyticNormal) {
     auto tex = makeRgbaTexture(kTex, kTex, rgba.data(), true);
     // 7.4 m pixels on 7.8 m texels: magnified, so mip level 0 (as a tile at its own level).
     const auto cam = camera(1150.0, kPx);
-    struct Light { double az, alt; float ambient; };
+    struct Light {
+        double az, alt;
+        float ambient;
+    };
     for (const Light l : {Light{315, 45, 0.0f}, Light{100, 20, 0.25f}, Light{200, 60, 0.3f}}) {
         const glm::vec3 sun = sunDirection(l.az, l.alt);
         // tauTex 4: texels (7.8 m) cover ~1 pixel here, so this is texture shading only.
@@ -154,7 +158,8 @@ TEST_F(NormalShadingGLTest, LambertOfNormalMapEqualsLambertOfAnalyticNormal) {
         for (int px = 8; px < kPx - 8; ++px) {
             const glm::dvec2 g = ground(cam, kPx, px, py);
             const double lam = std::max(glm::dot(hillNormal(g.x, g.y), glm::dvec3(sun)), 0.0);
-            worst = std::max(worst, std::abs(int(img.pixel(px, py)[0]) - int(std::lround(255.0 * lam))));
+            worst = std::max(worst,
+                             std::abs(int(img.pixel(px, py)[0]) - int(std::lround(255.0 * lam))));
         }
     EXPECT_GT(worst, 10);
 }
@@ -219,7 +224,7 @@ TEST_F(NormalShadingGLTest, HybridBlendIsContinuousFromTextureFarToGeometryNear)
             if (glm::abs(ground(cam, kPx, px - 1, kPx / 2).x - 500.0) < 480.0 &&
                 glm::abs(ground(cam, kPx, px, kPx / 2).x - 500.0) < 480.0)
                 maxRowStep = std::max(maxRowStep, std::abs(int(img.pixel(px, kPx / 2)[0]) -
-                                                       int(img.pixel(px - 1, kPx / 2)[0])));
+                                                           int(img.pixel(px - 1, kPx / 2)[0])));
         // The rule, checked on the pixel: weight from screen pixels per texel at the centre.
         const double ppt = (kTile / kTex) * cam.pixelsPerMetreAt(range);
         const double want = 204.0 + 51.0 * hybridGeometryWeight(float(ppt), 1.0f);

@@ -1,11 +1,11 @@
 // NOAA solar position against published reference values (issue 7: sun from date and place).
-#include <gtest/gtest.h>
-
-#include <cmath>
-
 #include "runtime/core/TimeParse.h"
 #include "runtime/topo/Geographic.h"
 #include "runtime/topo/SolarPosition.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace kiosk::topo {
 namespace {
@@ -78,7 +78,10 @@ namespace {
 
 // Reference values from PROJ (gdaltransform -s_srs EPSG:326xx/327xx -t_srs EPSG:4326).
 TEST(GeographicTest, UtmInverseMatchesProj) {
-    struct Case { int epsg; double x, y, lon, lat; };
+    struct Case {
+        int epsg;
+        double x, y, lon, lat;
+    };
     const Case cases[] = {
         {32610, 594500, 5189560, -121.760389932156, 46.8528681966363},  // Mount Rainier
         {32610, 500000, 0, -123.0, 0.0},
