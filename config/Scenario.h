@@ -49,7 +49,8 @@ struct Terrain {
     std::string pointer = "/terrain";
 };
 
-enum class LayerKind { Thematic, Luminance, Topographic, Visibility, Data, Sequence };
+/// Normals: a normal-map layer lit by the scenario's (moving) sun, hybrid with mesh shading.
+enum class LayerKind { Thematic, Luminance, Topographic, Visibility, Data, Sequence, Normals };
 /** @brief How a layer combines with the result of the layers below it (Döllner's operations). */
 enum class OperationType {
     Opacity,   ///< alpha-over with a constant opacity (the default)
@@ -246,6 +247,12 @@ struct Lighting {
     double sunAltitude = 45;  ///< degrees above the horizon
     double ambient = 0.25;
     std::vector<LightingKey> keys;
+    /**
+     * @brief The sun where it is at the data time (NOAA solar position) over latitude/longitude,
+     * by default the centre of the terrain's data; replaces sunAzimuth/sunAltitude and keys.
+     */
+    bool solar = false;
+    std::optional<double> latitude, longitude;  ///< degrees, north / east positive
 };
 
 /** @brief A whole scenario after includes were merged and every reference resolved. */

@@ -60,7 +60,7 @@ const std::map<std::string, std::vector<std::string>>& propertyTable() {
         {"Legend", {"enabled", "transfer", "position", "title"}},
         {"TimeLabel", {"enabled", "format", "timeZone", "showOffset", "position"}},
         {"SimpleOverlay", {"enabled", "position"}},
-        {"Lighting", {"sunAzimuth", "sunAltitude", "ambient", "keys"}},
+        {"Lighting", {"sunAzimuth", "sunAltitude", "ambient", "keys", "solar", "latitude", "longitude"}},
         {"LightingKey", {"time", "sunAzimuth", "sunAltitude"}},
     };
     return table;
@@ -451,7 +451,8 @@ const EnumTable<LayerKind> kLayerKinds = {{"thematic", LayerKind::Thematic},
                                           {"topographic", LayerKind::Topographic},
                                           {"visibility", LayerKind::Visibility},
                                           {"data", LayerKind::Data},
-                                          {"sequence", LayerKind::Sequence}};
+                                          {"sequence", LayerKind::Sequence},
+                                          {"normals", LayerKind::Normals}};
 const EnumTable<OperationType> kOperations = {
     {"opacity", OperationType::Opacity}, {"blend", OperationType::Blend},
     {"add", OperationType::Add},         {"modulate", OperationType::Modulate},
@@ -1070,6 +1071,12 @@ private:
         assign(l.sunAzimuth, o.num("sunAzimuth", azimuth));
         assign(l.sunAltitude, o.num("sunAltitude", altitude));
         assign(l.ambient, o.num("ambient", kUnit));
+        assign(l.solar, o.boolean("solar"));
+        if (auto v = o.num("latitude", Range{-90, 90})) l.latitude = v;
+        if (auto v = o.num("longitude", Range{-180, 180})) l.longitude = v;
+        if (l.latitude.has_value() != l.longitude.has_value())
+            mC.error("SCENARIO_MISSING", o.at(l.latitude ? "latitude" : "longitude"),
+                     "\"latitude\" and \"longitude\" go together");
         if (const json* keys = o.array("keys")) {
             for (std::size_t k = 0; k < keys->size(); ++k) {
                 Obj ko(mC, (*keys)[k], childPointer(o.at("keys"), k), "LightingKey");

@@ -22,6 +22,8 @@ echo "prepare-demo: importing $DEM"
 "$GEOKIOSK" import elevation "$DEM" --store "$work/rainier.gpkg" --name elevation --fill-voids --quiet
 "$GEOKIOSK" import topographic --store "$work/rainier.gpkg" --elevation elevation --name hillshade \
     --quiet
+"$GEOKIOSK" import topographic --store "$work/rainier.gpkg" --elevation elevation --name normals \
+    --normals --quiet
 echo "prepare-demo: making the SYNTHETIC flood (bathtub fill, not a model run)"
 "$BIN/make-synthetic-flood" "$DEM" "$work/flood" --steps 13 --rise 150 \
     --start 2026-03-14T00:00:00Z >/dev/null

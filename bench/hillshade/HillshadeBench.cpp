@@ -11,6 +11,7 @@
 // single-threaded; ours splits rows across 2 threads.
 
 #include "runtime/topo/Hillshade.h"
+#include "runtime/topo/NormalMap.h"
 #include "runtime/topo/Shadow.h"
 
 #include <cpl_conv.h>
@@ -129,9 +130,24 @@ double shadowRun(const std::vector<float>& dem, std::vector<std::uint8_t>& mask,
     return seconds(t0, Clock::now());
 }
 
+// Normal map (Rgb8, 3 bytes per pixel) of the same DEM: the importer's --normals work per pixel.
+double normalMapRun(const std::vector<float>& dem, std::vector<std::uint8_t>& out, int n,
+                    int threads) {
+    const auto t0 = Clock::now();
+    parallelRows(n, threads, [&](int y0, int y1) {
+        const RasterView v =
+            RasterView::window(dem.data(), n, n, n, 0, y0, n, y1 - y0, kPixel, kPixel, 1);
+        const auto d = kiosk::topo::normalMap(v, kiosk::topo::NormalMapParams{},
+                                              out.data() + static_cast<std::size_t>(y0) * n * 3,
+                                              static_cast<std::ptrdiff_t>(n) * 3);
+        if (d.hasErrors()) std::fprintf(stderr, "%s\n", d.format().c_str());
+    });
+    return seconds(t0, Clock::now());
+}
+
 struct Run {
     int size = 0;
-    double ours1 = 0, ours2 = 0, oursE2E = 0, gdal = 0, shadows2 = 0;
+    double ours1 = 0, ours2 = 0, oursE2E = 0, gdal = 0, shadows2 = 0, normals2 = 0;
     int maxDiff = -1;
     long long beyondOne = -1;
     bool ok = false;
@@ -204,6 +220,12 @@ Run benchSize(int n, const std::string& dir, int repeats) {
         light.altitudeDeg = 30.0;
         run.shadows2 = mp / shadowRun(dem, mask, n, 2, light);
     }
+    {
+        std::vector<std::uint8_t> normals(out.size() * 3);
+        double best = 1e30;
+        for (int k = 0; k < (n > 8192 ? 1 : 3); ++k) best = std::min(best, normalMapRun(dem, normals, n, 2));
+        run.normals2 = mp / best;
+    }
     run.ours1 = mp / best1;
     run.ours2 = mp / best2;
     run.oursE2E = mp / bestE2E;
@@ -266,10 +288,11 @@ int main(int argc, char** argv) {
                           "\"ours_compute_2t_mps\":%.1f,\"ours_end_to_end_2t_mps\":%.1f,"
                           "\"gdaldem_mps\":%.1f,\"ratio_compute_2t_vs_gdaldem\":%.2f,"
                           "\"ratio_end_to_end_vs_gdaldem\":%.2f,\"shadows_alt30_2t_mps\":%.1f,"
-                          "\"max_abs_diff_vs_gdaldem\":%d,\"pixels_beyond_1dn\":%lld}",
+                          "\"max_abs_diff_vs_gdaldem\":%d,\"pixels_beyond_1dn\":%lld,"
+                          "\"normal_map_rgb8_2t_mps\":%.1f,\"ratio_normal_map_vs_gdaldem_hillshade\":%.2f}",
                           first ? "" : ",", n, double(n) * n / 1e6, r.ours1, r.ours2, r.oursE2E,
                           r.gdal, r.ours2 / r.gdal, r.oursE2E / r.gdal, r.shadows2, r.maxDiff,
-                          r.beyondOne);
+                          r.beyondOne, r.normals2, r.normals2 / r.gdal);
         }
         json += buf;
         first = false;

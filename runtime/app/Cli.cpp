@@ -28,6 +28,7 @@ std::string usageText() {
   import sequence  SRC... --store STORE --name NAME [--times TIMES.csv] [--variable VAR]
   import topographic --store STORE [--elevation LAYER] [--name NAME] [--azimuth DEG]
                      [--altitude DEG] [--variant default|multidirectional|combined] [--shadows]
+                     [--normals]
         build or extend a store (a GeoPackage) from GDAL-readable rasters and model output
   validate SCENARIO...
         check scenarios against the schema and their stores

@@ -1,4 +1,5 @@
 #include "runtime/app/Session.h"
+#include "runtime/app/SolarLighting.h"
 
 #include <algorithm>
 #include <cmath>
@@ -149,13 +150,19 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
             alt += a * (keys[i + 1].sunAltitude - alt);
         }
     }
+    if (auto sun = solarSun(sc.lighting, mScene->storeInfo(), sc.terrain.elevation, time)) {
+        az = sun->azimuthDeg;  // lighting.solar: where the sun is at the data time
+        alt = sun->altitudeDeg;
+    }
     style.lightDir = render::sunDirection(az, alt);
     style.ambient = float(sc.lighting.ambient);
     style.verticalScale = float(sc.terrain.verticalExaggeration);
     style.elevationLutWeight = 0.0f;
     style.baseColor = glm::vec4(0.78f, 0.78f, 0.76f, 1.0f);
     for (const auto& l : sc.layers)
-        if (l.enabled && l.kind == config::LayerKind::Topographic) style.geometryLighting = 0.0f;
+        if (l.enabled && (l.kind == config::LayerKind::Topographic || l.kind == config::LayerKind::Normals))
+            style.geometryLighting = 0.0f;
+    style.tauTex = float(sc.terrain.tauTex);
     mScene->draw(camera, style);
     drawOverlays(time, width, height);
 

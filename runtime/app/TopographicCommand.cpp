@@ -15,7 +15,7 @@ int usage(const std::string& message) {
     std::fprintf(stderr,
                  "geokiosk import topographic: %s\nusage: geokiosk import topographic --store STORE "
                  "[--elevation LAYER] [--name NAME] [--azimuth DEG] [--altitude DEG] [--z-factor F] "
-                 "[--variant default|multidirectional|combined] [--shadows] [--quiet]\n",
+                 "[--variant default|multidirectional|combined] [--shadows] [--normals] [--quiet]\n",
                  message.c_str());
     return kExitUsage;
 }
@@ -32,14 +32,17 @@ bool number(const std::optional<std::string>& text, double& out) {
 int runImportTopographic(const std::vector<std::string>& argv) {
     Args args("import topographic",
               {"store", "elevation", "name", "azimuth", "altitude", "z-factor", "variant", "threads"},
-              {"shadows", "quiet"});
+              {"shadows", "normals", "quiet"});
     if (!args.parse(argv)) return usage(args.error());
     if (!args.positionals().empty()) return usage("unexpected argument '" + args.positionals()[0] + "'");
     import::TopographicOptions o;
     if (!args.value("store")) return usage("--store STORE is required");
     o.store = *args.value("store");
     o.elevation = args.value("elevation").value_or("elevation");
-    o.name = args.value("name").value_or("hillshade");
+    o.normals = args.flag("normals");
+    o.name = args.value("name").value_or(o.normals ? "normals" : "hillshade");
+    if (o.normals && args.flag("shadows"))
+        return usage("--shadows applies to the hillshade, not to --normals (the light moves)");
     if (!number(args.value("azimuth"), o.light.azimuthDeg)) return usage("--azimuth wants degrees");
     if (!number(args.value("altitude"), o.light.altitudeDeg) || o.light.altitudeDeg <= 0 ||
         o.light.altitudeDeg > 90)

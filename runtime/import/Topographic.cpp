@@ -9,6 +9,7 @@
 #include "runtime/import/Progress.h"
 #include "runtime/import/Pyramid.h"
 #include "runtime/import/TempStore.h"
+#include "runtime/topo/NormalMap.h"
 #include "runtime/topo/Shadow.h"
 
 namespace kiosk::import {
@@ -95,14 +96,17 @@ Diagnostics importTopographic(const TopographicOptions& o) {
         const io::TileMatrix& fine = grid.levels[std::size_t(grid.maxLevel())];
         ElevationRows source(w, o.elevation, grid);
         int apron = 1;
-        if (o.shadows) {
+        if (o.shadows && !o.normals) {
             auto root = w.readScalarTile(o.elevation, {0, 0, 0});
             const double relief = root ? double(root->stats.maxValue - root->stats.minValue) : 9000.0;
             apron = std::max(1, topo::requiredShadowApron(relief, o.light, fine.pixelXSize, fine.pixelYSize));
         }
-        d.append(w.createImageryLayer(
-            o.name, "hillshade of " + o.elevation + " (azimuth " + std::to_string(int(o.light.azimuthDeg)) +
-                        ", altitude " + std::to_string(int(o.light.altitudeDeg)) + ")"));
+        const std::string description =
+            o.normals ? "normal map of " + o.elevation + " (rgb8: east, north, up; a: valid)"
+                      : "hillshade of " + o.elevation + " (azimuth " +
+                            std::to_string(int(o.light.azimuthDeg)) + ", altitude " +
+                            std::to_string(int(o.light.altitudeDeg)) + ")";
+        d.append(w.createImageryLayer(o.name, description));
         if (d.hasErrors()) return d;
         const GridWindow window{0, 0, source.width(), source.height()};
         const int W = window.width();
@@ -124,6 +128,26 @@ Diagnostics importTopographic(const TopographicOptions& o) {
             v.apronBottom = bottom - (row0 + n);
             v.pixelSizeX = fine.pixelXSize;
             v.pixelSizeY = fine.pixelYSize;
+            if (o.normals) {
+                topo::NormalMapParams np;
+                np.zFactor = light.zFactor;
+                np.scale = light.scale;
+                np.algorithm = light.algorithm;
+                np.encoding = topo::NormalEncoding::Rgb8;
+                shade.assign(std::size_t(W) * std::size_t(n) * 3, 0);
+                rd = topo::normalMap(v, np, shade.data(), std::ptrdiff_t(W) * 3);
+                if (rd.hasErrors()) return rd;
+                for (std::size_t i = 0; i < std::size_t(W) * std::size_t(n); ++i) {
+                    // (0, 0, 0) is the encoding's nodata: transparent, so no rim of a false
+                    // horizontal normal along the data's edge (a valid blue byte is >= 128).
+                    const std::uint8_t* t = &shade[i * 3];
+                    out[i * 4 + 0] = t[0];
+                    out[i * 4 + 1] = t[1];
+                    out[i * 4 + 2] = t[2];
+                    out[i * 4 + 3] = t[2] ? 255 : 0;
+                }
+                return rd;
+            }
             shade.assign(std::size_t(W) * std::size_t(n), 0);
             rd = o.shadows ? topo::shadedRelief(v, light, topo::ShadowParams{o.shadowDarkening},
                                                 shade.data(), W)

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "runtime/gl/ShaderLibrary.h"
+#include "runtime/render/NormalShading.h"
 
 namespace kiosk::render {
 namespace {
@@ -77,6 +78,11 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
         if (!text) return text.diagnostics;
         s << *text << "\n";
     }
+    for (const auto& l : desc.layers)
+        if (l.kind == LayerKind::Normals) {
+            s << NormalShading::glslHelpers();
+            break;
+        }
     for (int i = 0; i < n; ++i) {
         s << "uniform sampler2D uLayer" << i << ";\n";
         if (desc.layers[std::size_t(i)].kind == LayerKind::Sequence)
@@ -118,6 +124,9 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
             case LayerKind::Topographic:
                 s << "    vec4 L" << i << " = texture(uLayer" << i << ", uv" << i
                   << ").rrra;\n";
+                break;
+            case LayerKind::Normals:
+                NormalShading::appendLayerSample(s, i);
                 break;
             case LayerKind::Visibility:
                 s << "    vec4 L" << i << " = vec4(1.0, 1.0, 1.0, texture(uLayer" << i << ", uv"

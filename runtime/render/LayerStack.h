@@ -15,8 +15,10 @@ namespace kiosk::render {
  * - Visibility: an alpha mask; contributes no colour, used by Blend operations of other layers.
  * - Data: a scalar raster (RG16F: value, validity) coloured by a transfer-function LUT.
  * - Sequence: two scalar frames interpolated in data space at alpha, then the LUT.
+ * - Normals: an encoded normal map lit by the run-time sun (uLightDir), with hybrid shading
+ *   from the mesh's normals where its texels are magnified (runtime/render/NormalShading.h).
  */
-enum class LayerKind { Thematic, Luminance, Topographic, Visibility, Data, Sequence };
+enum class LayerKind { Thematic, Luminance, Topographic, Visibility, Data, Sequence, Normals };
 
 /**
  * @brief How a layer's colour L combines with the colour C accumulated so far (chained in

@@ -38,6 +38,7 @@ Result<TerrainRenderer> TerrainRenderer::create(const CompositeProgramDesc& desc
     r.mLocAmbient = loc("uAmbient");
     r.mLocGeomLight = loc("uGeometryLighting");
     r.mLocClip = loc("uClip");
+    r.mLocTauTex = loc("uTauTex");
     for (std::size_t i = 0; i < desc.layers.size(); ++i) {
         const std::string n = std::to_string(i);
         r.mLayerLocs.push_back({loc("uLayer" + n), loc("uLayerB" + n), loc("uLayerRect" + n),
@@ -107,6 +108,7 @@ void TerrainRenderer::begin(const math::Camera& camera, const glm::dvec3& sceneO
     glUniform1f(mLocAmbient, style.ambient);
     glUniform1f(mLocGeomLight, style.geometryLighting);
     glUniform1f(mLocVScale, style.verticalScale);
+    if (mLocTauTex >= 0) glUniform1f(mLocTauTex, style.tauTex);
     for (std::size_t k = 0; k < mLuts.size(); ++k) {
         const auto& lut = mLuts[k];
         const auto& l = mLutLocs[k];

@@ -23,6 +23,8 @@ struct TerrainStyle {
     float geometryLighting = 1.0f;
     glm::vec4 baseColor{0.7f, 0.7f, 0.7f, 1.0f};
     float elevationLutWeight = 1.0f;  ///< 0 base colour .. 1 hypsometric tint
+    /** @brief Normals layers: screen pixels per texel where geometry shading takes over. */
+    float tauTex = 1.0f;
 };
 
 /** @brief Per-frame counters the stats record reports (docs/cli.md --stats). */
@@ -123,7 +125,7 @@ private:
     const math::Camera* mCamera = nullptr;
     GLint mLocMvp = -1, mLocOrigin = -1, mLocVScale = -1, mLocElevLut = -1, mLocElevLutSize = -1,
           mLocElevDomain = -1, mLocElevWeight = -1, mLocBase = -1, mLocLight = -1,
-          mLocAmbient = -1, mLocGeomLight = -1, mLocClip = -1;
+          mLocAmbient = -1, mLocGeomLight = -1, mLocClip = -1, mLocTauTex = -1;
     DrawCounters mCounters;
 };
 

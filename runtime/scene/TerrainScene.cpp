@@ -26,6 +26,7 @@ render::LayerKind compositeKind(config::LayerKind k) {
         case config::LayerKind::Visibility: return render::LayerKind::Visibility;
         case config::LayerKind::Data: return render::LayerKind::Data;
         case config::LayerKind::Sequence: return render::LayerKind::Sequence;
+        case config::LayerKind::Normals: return render::LayerKind::Normals;
     }
     return render::LayerKind::Thematic;
 }

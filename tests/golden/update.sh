@@ -4,5 +4,5 @@
 set -eu
 cd "$(dirname "$0")/../.."
 BUILD=${1:-build}
-KIOSK_UPDATE_GOLDEN=1 ctest --test-dir "$BUILD" -L 'gl|render' --output-on-failure
+KIOSK_UPDATE_GOLDEN=1 ctest --test-dir "$BUILD" -L 'gl|render|scenario' --output-on-failure
 git status --short tests/golden

@@ -452,5 +452,47 @@ TEST_F(DemoScenario, RendersTheGolden) {
     EXPECT_EQ(test::compareWithGolden(img, "demo_rainier_3h", {3, 0.3}), "");
 }
 
+// Issue 7: the demo shades with a normal-map layer under the keyed sun (azimuth 100 -> 200,
+// altitude 15 -> 45 over the clock), so the same view at two times is lit differently.
+TEST_F(DemoScenario, TheSunMovesOverTheClock) {
+    if (!fs::exists("data/generated/rainier.gpkg"))
+        KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_DATA", "demo store missing: run tools/prepare-demo.sh");
+    auto rt = gl::RenderTarget::create(480, 270);
+    ASSERT_TRUE(rt.ok());
+    auto s = Session::open("scenarios/demo/rainier.json", mCaps);
+    ASSERT_TRUE(s.ok()) << s.diagnostics.format();
+    Session& session = **s;
+    auto vp = session.viewpointAt(session.startTime(), "summit");
+    ASSERT_TRUE(vp.ok());
+    const math::Camera cam = makeCamera(*vp, session.terrain().bounds(), 480, 270, 45);
+    auto frame = [&](double t) {
+        settle(session, cam, t);
+        rt->bind();
+        session.drawFrame(cam, t, 480, 270);
+        return rt->readColor();
+    };
+    const gl::Image early = frame(session.startTime());
+    const gl::Image late = frame(session.startTime() + 9 * 3600);
+    // Centre of the frame (clear of the overlays), terrain only, no flood in either picture.
+    auto plainTerrain = [](const std::uint8_t* p) {
+        return !isSky(p) && !(p[2] > p[0] + 40 && p[2] > p[1] + 10);
+    };
+    double sumDiff = 0, sumEarly = 0, sumLate = 0;
+    int n = 0;
+    for (int y = 70; y < 200; ++y)
+        for (int x = 40; x < 440; ++x) {
+            const auto* a = early.pixel(x, y);
+            const auto* b = late.pixel(x, y);
+            if (!plainTerrain(a) || !plainTerrain(b)) continue;
+            sumDiff += std::abs(int(a[1]) - int(b[1]));
+            sumEarly += a[1];
+            sumLate += b[1];
+            ++n;
+        }
+    ASSERT_GT(n, 20000);
+    EXPECT_GT(sumDiff / n, 10.0) << "the shading did not follow the sun";
+    EXPECT_GT(sumLate / n, sumEarly / n + 5.0) << "a higher sun should light the relief more";
+}
+
 }  // namespace
 }  // namespace kiosk::app

@@ -51,6 +51,15 @@ if [[ ! -e /dev/dri ]]; then
     expect 3 "no DRM device" "$GK" play $DEMO --display kms
     expect 3 "no display.*--display headless" env -u DISPLAY -u WAYLAND_DISPLAY "$GK" play $DEMO
 fi
+# Topographic import: a normal map into a copy of the demo store (issue 7).
+expect 2 "--shadows applies to the hillshade, not to --normals" "$GK" import topographic --store "$tmp/n.gpkg" --normals --shadows
+if [[ -f data/generated/rainier.gpkg ]]; then
+    cp data/generated/rainier.gpkg "$tmp/n.gpkg"
+    expect 0 "" "$GK" import topographic --store "$tmp/n.gpkg" --normals --name relief_normals --quiet
+    if "$GK" info "$tmp/n.gpkg" 2>&1 | grep -q "relief_normals \[imagery\]"; then
+        echo "ok:   info lists the normal map"; pass=$((pass + 1))
+    else echo "FAIL: info does not list relief_normals"; fail=$((fail + 1)); fi
+fi
 # Everything shipped validates.
 expect 0 "" "$GK" validate $DEMO
 # Headless play runs frames and stops cleanly.

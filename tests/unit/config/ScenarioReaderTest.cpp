@@ -191,6 +191,12 @@ const BadCase kBad[] = {
     {"title not string", R"("title": 1)", "SCENARIO_TYPE", "/title", "expected string, got number"},
     {"ambient range", R"("lighting": {"ambient": 2})", "SCENARIO_RANGE", "/lighting/ambient",
      "ambient must be in [0, 1], got 2"},
+    {"solar latitude range", R"("lighting": {"solar": true, "latitude": 91, "longitude": 0})",
+     "SCENARIO_RANGE", "/lighting/latitude", "latitude must be in [-90, 90], got 91"},
+    {"solar site needs both", R"("lighting": {"solar": true, "latitude": 46})", "SCENARIO_MISSING",
+     "/lighting/latitude", "\"latitude\" and \"longitude\" go together"},
+    {"solar is a boolean", R"("lighting": {"solar": "yes"})", "SCENARIO_TYPE", "/lighting/solar",
+     "expected boolean, got string"},
     {"fov range", R"("camera": {"fovY": 0})", "SCENARIO_RANGE", "/camera/fovY", "in [1, 170]"},
     {"clock order", R"("clock": {"start": "2026-03-14T06:00:00Z", "end": "2026-03-14T05:00:00Z"})",
      "SCENARIO_RANGE", "/clock/end", "clock end must be after its start"},
@@ -472,6 +478,31 @@ TEST(ScenarioReader, AcceptedPropertiesCoverEveryKind) {
     EXPECT_EQ(table.count("Scenario"), 1u);
     EXPECT_GE(table.size(), 25u);
     for (const auto& [kind, keys] : table) EXPECT_FALSE(keys.empty()) << kind;
+}
+
+}  // namespace
+}  // namespace kiosk::config
+
+namespace kiosk::config {
+namespace {
+
+TEST(ScenarioReader, NormalsLayerAndSolarSun) {
+    auto r = parseScenario(R"({"version": 1, "stores": {"v": "v.gpkg"}, "terrain": {"store": "v"},
+        "layers": [{"id": "n", "kind": "normals", "source": {"store": "v", "layer": "normals"},
+                    "operation": "modulate"}],
+        "lighting": {"solar": true, "latitude": 46.85, "longitude": -121.76, "ambient": 0.2}})",
+                           "n.json");
+    ASSERT_TRUE(r.ok()) << r.diagnostics.format();
+    ASSERT_EQ(r.value->layers.size(), 1u);
+    EXPECT_EQ(r.value->layers[0].kind, LayerKind::Normals);
+    EXPECT_STREQ(layerKindName(LayerKind::Normals), "normals");
+    EXPECT_TRUE(r.value->lighting.solar);
+    EXPECT_EQ(r.value->lighting.latitude, 46.85);
+    EXPECT_EQ(r.value->lighting.longitude, -121.76);
+    auto plain = parseScenario(withBase(R"("title": "t")"), "p.json");
+    ASSERT_TRUE(plain.ok());
+    EXPECT_FALSE(plain.value->lighting.solar);
+    EXPECT_FALSE(plain.value->lighting.latitude.has_value());
 }
 
 }  // namespace

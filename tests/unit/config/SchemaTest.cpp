@@ -94,7 +94,7 @@ TEST(ScenarioSchema, EnumValuesAreAcceptedByTheReader) {
     const json schema = loadSchema();
     ASSERT_TRUE(schema.is_object());
     const json& layerKinds = schema["$defs"]["Layer"]["properties"]["kind"]["enum"];
-    ASSERT_EQ(layerKinds.size(), 6u);
+    ASSERT_EQ(layerKinds.size(), 7u);
     for (const auto& kind : layerKinds) {
         const std::string k = kind.get<std::string>();
         const std::string source = k == "sequence" ? R"({"store": "v", "sequence": "s"})"

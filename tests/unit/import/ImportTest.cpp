@@ -3,7 +3,9 @@
 #include "runtime/core/TimeParse.h"
 #include "runtime/import/Importer.h"
 #include "runtime/import/Pyramid.h"
+#include "runtime/import/Topographic.h"
 #include "runtime/io/StoreReader.h"
+#include "runtime/topo/NormalMap.h"
 
 #include <cpl_conv.h>
 #include <gdal.h>
@@ -889,4 +891,64 @@ TEST(ImportElevation, FeetDemIsConvertedAndMismatchIsRefused) {
     EXPECT_GT(post->maxValue, 2400);               // 8367 ft = 2550 m, resampled to 30 m
     EXPECT_LT(post->maxValue, 8367 * 0.3048 + 1);  // metres, not feet
     EXPECT_EQ(post->levels, pre->levels);
+}
+
+// `import topographic --normals`: the finest level holds exactly topo::normalMap of the store's
+// own full-resolution elevation (Rgb8 in RGB, validity in A); nodata and the area beyond the
+// DEM are transparent zero texels (no rim); coarser levels exist.
+TEST(ImportTopographic, NormalMapEqualsNormalMapOfTheStoredElevation) {
+    const fs::path dir = testDir();
+    const fs::path store = dir / "s.gpkg";
+    ASSERT_FALSE(importElevation(makeDem(dir).string(), options(store)).hasErrors());
+    TopographicOptions o;
+    o.store = store;
+    o.normals = true;
+    o.name = "normals";
+    o.quiet = true;
+    const Diagnostics d = importTopographic(o);
+    ASSERT_FALSE(d.hasErrors()) << d.format();
+    auto r = openStore(store);
+    const auto* l = r->info().findLayer("normals");
+    ASSERT_NE(l, nullptr);
+    EXPECT_EQ(l->kind, io::LayerKind::Imagery);
+    const auto& g = r->info().grid;
+    const int t = g.levels.back().tileWidth, L = g.maxLevel();
+    const int W = g.levels.back().matrixWidth * t, H = g.levels.back().matrixHeight * t;
+    const std::vector<float> dem = finestArray(*r, "elevation", W, H);
+    topo::RasterView v = topo::RasterView::window(dem.data(), W, H, W, 0, 0, W, H,
+                                                  g.levels.back().pixelXSize,
+                                                  g.levels.back().pixelYSize);
+    std::vector<std::uint8_t> want(std::size_t(W) * std::size_t(H) * 3);
+    ASSERT_FALSE(topo::normalMap(v, {}, want.data(), W * 3).hasErrors());
+    int compared = 0, nodata = 0, mismatched = 0;
+    for (int row = 0; row * t < H; ++row)
+        for (int col = 0; col * t < W; ++col) {
+            auto tile = r->readImagery("normals", TileId{L, col, row});
+            if (!tile) continue;
+            for (int y = 0; y < t; ++y)
+                for (int x = 0; x < t; ++x) {
+                    const std::uint8_t* p = &tile->rgba[std::size_t(y * t + x) * 4];
+                    const std::uint8_t* q =
+                        &want[(std::size_t(row * t + y) * std::size_t(W) + std::size_t(col * t + x)) * 3];
+                    const bool valid = q[2] != 0;
+                    if (!valid) {
+                        ++nodata;
+                        mismatched += (p[0] | p[1] | p[2] | p[3]) != 0;
+                        continue;
+                    }
+                    ++compared;
+                    mismatched += p[0] != q[0] || p[1] != q[1] || p[2] != q[2] || p[3] != 255;
+                }
+        }
+    EXPECT_GT(compared, 590 * 510);
+    EXPECT_GT(nodata, 38 * 28);  // the nodata block, and beyond the DEM where tiles exist
+    EXPECT_EQ(mismatched, 0);
+    // The nodata block (DEM x < 40, y < 30) is transparent, its neighbours are shaded.
+    auto first = r->readImagery("normals", TileId{L, 0, 0});
+    ASSERT_TRUE(first.ok()) << first.diagnostics.format();
+    EXPECT_EQ(first->rgba[std::size_t(10 * t + 10) * 4 + 3], 0);
+    EXPECT_EQ(first->rgba[std::size_t(100 * t + 100) * 4 + 3], 255);
+    EXPECT_GE(first->rgba[std::size_t(100 * t + 100) * 4 + 2], 128);  // normal points up
+    EXPECT_TRUE(r->readImagery("normals", TileId{0, 0, 0}).ok());
+    EXPECT_EQ(validateGpkg(store), "");
 }
