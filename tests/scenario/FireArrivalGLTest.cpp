@@ -102,6 +102,9 @@ protected:
         vp.headingDeg = 0;
         vp.pitchDeg = -89.9;
         vp.range = 2400;  // the middle ~1.9 km: no sky, no skirts in view
+        return draw(s, rt, time, vp);
+    }
+    Counts draw(Session& s, gl::RenderTarget& rt, double time, const math::Viewpoint& vp) {
         const math::Camera cam = makeCamera(vp, s.terrain().bounds(), kView, kView, 45.0);
         for (int k = 0; k < 20000 && (k == 0 || !s.terrain().settled()); ++k) {
             s.prepare(cam, time);
@@ -164,6 +167,58 @@ TEST_F(FireArrival, ClassDataWithoutArrivalSwitchesAtTheNextFrame) {
     EXPECT_NEAR(between.burnedFraction(), atFrame.burnedFraction(), 0.01);
     EXPECT_GT(next.burnedFraction(), atFrame.burnedFraction() + 0.5);
     EXPECT_LE(between.blended, 3 * kView);
+}
+
+// The real Cell2Fire Harvest40x40 burn grids (16 hourly frames of a 4 km square): between two
+// frames the burned area grows monotonically with alpha, from one frame's scar to the next.
+TEST_F(FireArrival, Cell2FireScarGrowsBetweenFrames) {
+    const std::string grids = test::sharedData("cell2fire_fire_spread/Harvest40x40/Grids/Grids1");
+    const std::string forest = test::sharedData("cell2fire_fire_spread/Harvest40x40/Forest.asc");
+    if (grids.empty() || forest.empty())
+        GTEST_SKIP() << "../shared/data/cell2fire_fire_spread absent";
+    import::ImportOptions o;
+    o.store = sDir / "c2f.gpkg";
+    o.quiet = true;
+    o.name = "elevation";
+    o.zScale = 0.001;  // fuel codes as a (nearly flat) terrain: only the scar matters here
+    const Diagnostics elevation = import::importElevation(forest, o);  // warns: no CRS
+    ASSERT_FALSE(elevation.hasErrors()) << elevation.format();
+    o.name = "burn";
+    o.zScale = 1.0;
+    o.start = *parseIso8601("2026-03-14T00:00:00Z");
+    ASSERT_FALSE(import::importSequence({grids}, o).hasErrors());
+    const fs::path p = sDir / "c2f.json";
+    std::ofstream(p) << R"({ "version": 1, "title": "", "stores": { "s": "c2f.gpkg" },
+        "terrain": { "store": "s", "tauGeom": 1, "tauTex": 1 },
+        "transferFunctions": { "burn": { "units": "class", "stops": [
+            { "value": -1, "color": "#00ff00" }, { "value": 0, "color": "#00ff00" }, { "value": 1, "color": "#ff0000" } ] } },
+        "layers": [ { "id": "fire", "kind": "sequence", "source": { "store": "s", "sequence": "burn" },
+                      "transfer": "burn", "interpolate": "arrival" } ] })";
+    auto opened = Session::open(p, mCaps);
+    ASSERT_TRUE(opened.ok()) << opened.diagnostics.format();
+    Session& s = **opened;
+    auto rt = makeTarget(kView, kView);
+    math::Viewpoint vp;
+    vp.target = glm::dvec3(457900.0 + 2000.0, 5716800.0 + 2000.0, 0.0);
+    vp.headingDeg = 0;
+    vp.pitchDeg = -89.9;
+    vp.range = 4500;  // ~3.7 km of the 4 km square
+    // Frames 3 -> 4 (61 -> 85 burned cells in the grids).
+    const double t3 = s.startTime() + 3 * 3600.0;
+    double previous = -1;
+    std::vector<double> fractions;
+    for (double alpha : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+        const Counts c = draw(s, rt, t3 + alpha * 3600.0, vp);
+        fractions.push_back(c.burnedFraction());
+        EXPECT_GE(c.burnedFraction(), previous) << "the scar shrank at alpha " << alpha;
+        previous = c.burnedFraction();
+    }
+    // Strictly between the two frames' scars a quarter into the interval: a sweep, not a
+    // switch at either end. (New cells of a 100 m grid mostly touch the old scar, threshold
+    // 1 / (1 + 1): most have switched by alpha 0.5.)
+    EXPECT_GT(fractions[1], fractions[0] + 0.1 * (fractions[4] - fractions[0]));
+    EXPECT_LT(fractions[1], fractions[4] - 0.1 * (fractions[4] - fractions[0]));
+    EXPECT_GT(fractions[4], fractions[0] * 1.2) << "frames 3 and 4 should differ by 24 cells";
 }
 
 }  // namespace
