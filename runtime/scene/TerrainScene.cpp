@@ -422,7 +422,8 @@ void TerrainScene::update(const math::Camera& camera, double time) {
     }
     mSelection = &mSelector.select(camera, mStats, *mResidency);
     mFrame.requests = std::uint32_t(mSelection->requests.size());
-    mLoader->submit(mSelection->requests);
+    // Submitted at the end of update() together with the sequences' frames ahead.
+    for (const auto& r : mSelection->requests) mLoader->request(r.key, r.priority);
     if (!mSelection->requests.empty() && log::threshold() == log::Level::Debug) {
         const auto& k = mSelection->requests.front().key;
         KIOSK_LOG_DEBUG(kTag, "%zu requests, first layer %u frame %d tile %d/%d/%d", mSelection->requests.size(),
@@ -470,6 +471,8 @@ void TerrainScene::update(const math::Camera& camera, double time) {
     mSettled = !requestsPending && mLoader->inFlight() == 0 && !mFrame.holdingSequence &&
                mSelection->counters.tilesFromAncestor == 0;
     planSequencePrefetch();
+    for (const auto& r : mSequencePrefetch) mLoader->request(r.key, r.priority);
+    mLoader->submit();
     sendPrefetch();
 }
 
@@ -482,7 +485,9 @@ void TerrainScene::prefetch(const math::Camera& futureCamera) {
     }
     const auto& sel = mPrefetchSelector.select(futureCamera, mStats, *mPrefetchResidency);
     mPrefetch.assign(sel.requests.begin(), sel.requests.end());
-    // Sequence frames ahead of the playhead are planned in update() (planSequencePrefetch).
+    // Sequence frames ahead of the playhead are planned in update() (planSequencePrefetch) for
+    // the view now; here the same frames for the view the camera path is heading to.
+    addPathFramePrefetch(sel);
     sendPrefetch();
 }
 

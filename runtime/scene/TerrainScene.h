@@ -166,6 +166,7 @@ private:
     void countPrefetchHits(StackLayer& layer, bool reported);
     void recordLoadTime(const loader::LoadResult& result);
     void sendPrefetch();
+    void addPathFramePrefetch(const terrain::SelectionResult& future);
     bool specComplete(int spec) const;
     void bindArrival(const StackLayer& layer, const terrain::DrawTile& tile,
                      render::LayerBinding& binding) const;
@@ -206,7 +207,7 @@ private:
     Playback mPlayback;
     anim::LoadTimeEstimator mTileLoad{0.005};  ///< seconds per sequence tile on the loader
     std::vector<terrain::TileRequest> mSequencePrefetch;
-    std::vector<terrain::TileRequest> mPrefetchAll;  ///< sequence + camera prefetch, as sent
+    std::vector<terrain::TileRequest> mPrefetchAll;  ///< camera prefetch still missing, as sent
 };
 
 }  // namespace kiosk::scene

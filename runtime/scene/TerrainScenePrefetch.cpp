@@ -8,8 +8,9 @@
 namespace kiosk::scene {
 namespace {
 
-// Loader prefetch priorities: ahead frames by deadline, above camera-path tiles (whose
-// priority is their screen-space error in pixels, far below this).
+// Frames ahead of the playhead have deadlines: they go to the loader's frame queue (not the
+// idle-time prefetch queue, which a camera still refining its terrain would starve), ordered by
+// deadline and above terrain refinement (priority = screen-space error in pixels, far below).
 constexpr double kSequencePriority = 1e7;
 
 }  // namespace
@@ -150,9 +151,29 @@ void TerrainScene::bindArrival(const StackLayer& l, const terrain::DrawTile& t,
     b.heightT = tb.height;
 }
 
+void TerrainScene::addPathFramePrefetch(const terrain::SelectionResult& future) {
+    for (const StackLayer& l : mLayers) {
+        if (!l.sequence || l.specA < 0) continue;
+        for (const anim::PrefetchItem& item : l.plan.items) {
+            for (const auto& t : future.tiles) {
+                for (int spec : {l.specA, l.specT}) {
+                    if (spec < 0 || int(t.textureCount) <= spec) continue;
+                    terrain::TileKey key =
+                        future.textures[t.firstTexture + std::uint32_t(spec)].wanted;
+                    key.frame = std::int32_t(item.frame);
+                    // Idle-time queue, after the path's own tiles: by deadline, below 1 px SSE.
+                    if (!mCache->find(key).valid())
+                        mPrefetch.push_back(
+                            {key, 0.5 / (1.0 + std::max(0.0, item.deadlineSeconds))});
+                }
+            }
+        }
+    }
+}
+
 void TerrainScene::sendPrefetch() {
-    mPrefetchAll.assign(mSequencePrefetch.begin(), mSequencePrefetch.end());
     // Camera-path tiles asked for last frame that have arrived since are not asked again.
+    mPrefetchAll.clear();
     for (const auto& r : mPrefetch)
         if (!mCache->find(r.key).valid()) mPrefetchAll.push_back(r);
     mLoader->prefetch(mPrefetchAll);
