@@ -82,7 +82,8 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
         s << "uniform sampler2D uLayer" << i << ";\n";
         if (desc.layers[std::size_t(i)].kind == LayerKind::Sequence)
             s << "uniform sampler2D uLayerB" << i << ";\n";
-        if (desc.layers[std::size_t(i)].kind == LayerKind::Sequence && desc.layers[std::size_t(i)].arrival)
+        if (desc.layers[std::size_t(i)].kind == LayerKind::Sequence &&
+            desc.layers[std::size_t(i)].arrival)
             s << "uniform sampler2D uLayerT" << i << ";\nuniform vec4 uLayerRectT" << i << ";\n";
         s << "uniform vec4 uLayerRect" << i << ";\nuniform vec4 uLayerParam" << i << ";\n";
     }
@@ -139,8 +140,8 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
                     s << "    vec2 e" << i << " = texture(uLayerB" << i << ", uv" << i << ").rg;\n";
                     if (l.arrival) {
                         // Arrival: each pixel switches class when alpha passes its threshold.
-                        s << "    vec2 t" << i << " = texture(uLayerT" << i << ", (vScenePos - uLayerRectT"
-                          << i << ".xy) * uLayerRectT" << i << ".zw).rg;\n    d" << i
+                        s << "    vec2 t" << i << " = texture(uLayerT" << i
+                          << ", (vScenePos - uLayerRectT" << i << ".xy) * uLayerRectT" << i << ".zw).rg;\n    d" << i
                           << " = uLayerParam" << i << ".y >= t" << i << ".r / max(t" << i
                           << ".g, 1e-6) ? e" << i << " : d" << i << ";\n";
                     } else {

@@ -173,8 +173,8 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
                     sl.interpolation == anim::Interpolation::Arrival) {
                     // Per-pixel thresholds of each frame pair, computed by the loader thread.
                     sl.keyLayerT = int(bindings.size());
-                    loader::LayerBinding tb{sl.sequence->name, io::LayerKind::Sequence, true, sl.nodataAs};
-                    bindings.push_back(tb);
+                    bindings.push_back(
+                        {sl.sequence->name, io::LayerKind::Sequence, true, sl.nodataAs});
                     sl.specT = int(setup.textures.size());
                     setup.textures.push_back({std::uint16_t(sl.keyLayerT), 0, maxLevel});
                     comp.arrival = true;
@@ -418,7 +418,8 @@ void TerrainScene::update(const math::Camera& camera, double time) {
         wanted[i] = anim::bracketFrames(l.sequence->frameTimes, time, l.interpolation);
         mSelector.setTextureFrame(std::size_t(l.specA), std::int32_t(wanted[i].i0));
         if (l.specB >= 0) mSelector.setTextureFrame(std::size_t(l.specB), std::int32_t(wanted[i].i1));
-        if (l.specT >= 0) mSelector.setTextureFrame(std::size_t(l.specT), std::int32_t(wanted[i].i0));
+        if (l.specT >= 0)
+            mSelector.setTextureFrame(std::size_t(l.specT), std::int32_t(wanted[i].i0));
     }
     mSelection = &mSelector.select(camera, mStats, *mResidency);
     mFrame.requests = std::uint32_t(mSelection->requests.size());
@@ -453,7 +454,8 @@ void TerrainScene::update(const math::Camera& camera, double time) {
         if (l.shown.hasPair && (l.shown.i0 != w.i0 || l.shown.i1 != w.i1)) {
             mSelector.setTextureFrame(std::size_t(l.specA), std::int32_t(l.shown.i0));
             if (l.specB >= 0) mSelector.setTextureFrame(std::size_t(l.specB), std::int32_t(l.shown.i1));
-            if (l.specT >= 0) mSelector.setTextureFrame(std::size_t(l.specT), std::int32_t(l.shown.i0));
+            if (l.specT >= 0)
+                mSelector.setTextureFrame(std::size_t(l.specT), std::int32_t(l.shown.i0));
             reselect = true;
         }
         if (!l.shown.hasPair) {

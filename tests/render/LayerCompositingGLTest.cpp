@@ -356,6 +356,22 @@ TEST_F(LayerCompositingGLTest, RotatedEllipticalLensAndSoftEdge) {
     EXPECT_GT(rim.b, dn(kBase * 0.5f).b + 5);
 }
 
+TEST(LayerStackTest, ArrivalSequenceSwitchesOnAThresholdTexture) {
+    CompositeProgramDesc desc{{{LayerKind::Sequence, LayerOp::Over, -1}}, {}, 1};
+    EXPECT_EQ(textureUnitsNeeded(desc), 4);  // elevation LUT, transfer LUT, two frames
+    auto data = generateCompositeShader(desc, 16);
+    ASSERT_TRUE(data.ok());
+    EXPECT_NE(data->find("mix(d0, e0, uLayerParam0.y)"), std::string::npos);
+    EXPECT_EQ(data->find("uLayerT0"), std::string::npos);
+    desc.layers[0].arrival = true;
+    EXPECT_EQ(textureUnitsNeeded(desc), 5);  // + the pair's thresholds
+    auto arrival = generateCompositeShader(desc, 16);
+    ASSERT_TRUE(arrival.ok());
+    EXPECT_NE(arrival->find("uniform sampler2D uLayerT0;"), std::string::npos);
+    EXPECT_NE(arrival->find("uLayerParam0.y >= t0.r / max(t0.g, 1e-6) ? e0 : d0"), std::string::npos);
+    EXPECT_EQ(arrival->find("mix(d0, e0"), std::string::npos) << "classes must never be mixed";
+}
+
 TEST(LayerStackTest, TooManyLayersIsReported) {
     CompositeProgramDesc desc;
     for (int i = 0; i < 20; ++i) desc.layers.push_back({LayerKind::Thematic, LayerOp::Over, -1});
