@@ -20,6 +20,7 @@ double percentile(std::vector<double> v, double p) {
 std::string FrameStats::toJson() const {
     nlohmann::json j;
     std::vector<double> ms;
+    std::uint64_t missingFrames = 0, heldTotal = 0, hitsTotal = 0;
     auto& frames = j["frames"];
     frames = nlohmann::json::object();
     for (const auto& f : mFrames) {
@@ -31,11 +32,20 @@ std::string FrameStats::toJson() const {
         frames["sequence_tiles_missing"].push_back(f.sequenceTilesMissing);
         frames["resident_bytes"].push_back(f.residentBytes);
         frames["data_time"].push_back(f.dataTime);
+        frames["held_frames"].push_back(f.heldFrames);
+        frames["prefetch_depth"].push_back(f.prefetchDepth);
+        frames["prefetch_hits"].push_back(f.prefetchHits);
+        missingFrames += f.sequenceTilesMissing > 0 ? 1u : 0u;
+        heldTotal += f.holdingSequence ? 1u : 0u;
+        hitsTotal += f.prefetchHits;
     }
     j["summary"] = {{"frames", mFrames.size()},
                     {"frame_ms", {{"median", percentile(ms, 50)},
                                   {"p95", percentile(ms, 95)},
-                                  {"p99", percentile(ms, 99)}}}};
+                                  {"p99", percentile(ms, 99)}}},
+                    {"sequence_missing_frames", missingFrames},
+                    {"held_frames", heldTotal},
+                    {"prefetch_hits", hitsTotal}};
     return j.dump(1);
 }
 

@@ -17,6 +17,10 @@ struct FrameRecord {
     std::uint32_t sequenceTilesMissing = 0;
     std::uint64_t residentBytes = 0;
     double dataTime = 0;  ///< scenario time shown (epoch seconds)
+    bool holdingSequence = false;   ///< a sequence showed an older complete pair (held)
+    std::uint32_t heldFrames = 0;   ///< consecutive held frames, this one included
+    std::int32_t prefetchDepth = 0; ///< frames ahead the prefetch planner wanted
+    std::uint32_t prefetchHits = 0; ///< frames shown this frame that were prefetched in time
 };
 
 /** @brief Percentile by linear interpolation between closest ranks (p in [0,100]). */

@@ -208,6 +208,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             offscreen->bind();
         else
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        session->setPlayback(scene::playbackOf(clock));
         session->drawFrame(cam, t, w, h);
         // Camera paths are known in advance: ask for the tiles of the view two seconds ahead.
         if (auto ahead = session->viewpointAt(clock.predict(kPrefetchSeconds), ""))

@@ -118,6 +118,12 @@ int runRenderCommand(const std::vector<std::string>& argv) {
                                 : 1.0;
         const std::int64_t n = anim::frameCount(t0, t1, fps, rate);
         for (std::int64_t i = 0; i < n; ++i) times.push_back(anim::timeForFrame(t0, t1, fps, i, rate));
+        // Frames ahead of the playhead load while the current one is waited for and drawn.
+        scene::Playback playback;
+        playback.rate = rate;  // data seconds per playback second
+        playback.start = t0;
+        playback.end = t1;
+        s.setPlayback(playback);
     } else {
         times.push_back(at ? at->resolve(s.startTime()) : s.startTime());
     }

@@ -132,7 +132,7 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     glViewport(0, 0, width, height);
     glClearColor(0.62f, 0.71f, 0.80f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    mScene->update(camera, time);
+    mScene->update(camera, time, mPlayback);
 
     render::TerrainStyle style;
     double az = sc.lighting.sunAzimuth, alt = sc.lighting.sunAltitude;
@@ -174,6 +174,10 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     r.sequenceTilesMissing = f.sequenceTilesMissing;
     r.residentBytes = f.residentBytes;
     r.dataTime = time;
+    r.holdingSequence = f.holdingSequence;
+    r.heldFrames = f.heldFrames;
+    r.prefetchDepth = f.prefetchDepth;
+    r.prefetchHits = f.prefetchHits;
     return r;
 }
 

@@ -48,7 +48,11 @@ public:
     void setNotice(std::string notice) { mNotice = std::move(notice); }
 
     /** @brief Select and load tiles for the view without drawing (render waits with this). */
-    void prepare(const math::Camera& camera, double time) { mScene->update(camera, time); }
+    void prepare(const math::Camera& camera, double time) {
+        mScene->update(camera, time, mPlayback);
+    }
+    /** @brief How the clock plays (rate, range, seeks): sizes the sequences' prefetch. */
+    void setPlayback(const scene::Playback& playback) { mPlayback = playback; }
 
     /** @brief Update tiles for the view and draw terrain + overlays into the bound framebuffer. */
     FrameRecord drawFrame(const math::Camera& camera, double time, int width, int height);
@@ -66,6 +70,7 @@ private:
     anim::CameraPath mPath;
     anim::TimeZone mZone;
     double mStart = 0, mEnd = 0;
+    scene::Playback mPlayback;
 };
 
 /** @brief Camera for a viewpoint with clip planes fitted to the scene. */

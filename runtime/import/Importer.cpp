@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <regex>
 #include <sstream>
 
@@ -139,8 +140,13 @@ Result<PyramidResult> importScalarLayer(io::StoreWriter& w, const PlacedSource& 
 
 }  // namespace
 
+namespace {
+Diagnostics importSwwElevation(const std::string& source, const ImportOptions& o);
+}  // namespace
+
 static Diagnostics importElevationImpl(const std::string& source, const ImportOptions& o) {
     initGdal();
+    if (lowerExt(source) == ".sww") return importSwwElevation(source, o);
     auto src = openRaster(source);
     if (!src) return src.diagnostics;
     if (o.fillVoids) {
@@ -545,6 +551,91 @@ Result<std::vector<Frame>> expandSources(const std::vector<std::string>& sources
     return frames;
 }
 
+// The grid of an SWW import (a new store gets one sized to the mesh) and the mesh's window on
+// it. Shared by the depth sequence and the bed elevation so both layers sit on one grid.
+Result<GridWindow> swwGridWindow(io::StoreWriter& w, const SwwMesh& mesh, const ImportOptions& o,
+                                 const std::string& source) {
+    Diagnostics e;
+    double minX, minY, maxX, maxY;
+    mesh.bounds(minX, minY, maxX, maxY);
+    if (!w.grid()) {
+        StoreCrs crs = localCrs();
+        if (o.crs) {
+            auto c = crsFromUser(*o.crs);
+            if (!c) return c.diagnostics;
+            crs = *c;
+        } else if (mesh.epsg()) {
+            auto c = crsFromUser("EPSG:" + std::to_string(mesh.epsg()));
+            if (c) crs = *c;
+        }
+        const double p = o.pixelSize ? *o.pixelSize : std::max(maxX - minX, maxY - minY) / 512.0;
+        const int wpx = int(std::ceil((maxX - minX) / p)), hpx = int(std::ceil((maxY - minY) / p));
+        int levels = 1;
+        while (std::int64_t(o.tileSize) << (levels - 1) < std::max(wpx, hpx)) ++levels;
+        io::TileGrid g;
+        g.srsId = crs.srsId;
+        g.crsName = crs.name;
+        g.crsWkt = crs.wkt;
+        g.minX = minX;
+        g.maxY = maxY;
+        const double size = p * double(std::int64_t(o.tileSize) << (levels - 1));
+        g.maxX = minX + size;
+        g.minY = maxY - size;
+        g.setPyramid(levels, o.tileSize, o.tileSize, p);
+        e.append(w.defineGrid(g));
+        if (e.hasErrors()) return e;
+    }
+    const io::TileGrid& g = *w.grid();
+    const double p = g.levels.back().pixelXSize;
+    const double full = double(g.levels.back().tileWidth) * g.levels.back().matrixWidth;
+    GridWindow win;
+    win.x0 = int(std::clamp(std::floor((minX - g.minX) / p), 0.0, full));
+    win.x1 = int(std::clamp(std::ceil((maxX - g.minX) / p), 0.0, full));
+    win.y0 = int(std::clamp(std::floor((g.maxY - maxY) / p), 0.0, full));
+    win.y1 = int(std::clamp(std::ceil((g.maxY - minY) / p), 0.0, full));
+    if (win.x1 == win.x0 && win.x1 < full) ++win.x1;
+    if (win.y1 == win.y0 && win.y1 < full) ++win.y1;
+    if (win.empty()) {
+        e.error("IMPORT_EXTENT_MISMATCH", source, "",
+                "mesh extent does not overlap the store extent");
+        return e;
+    }
+    return win;
+}
+
+// `import elevation X.sww`: the model's bed, rasterised on the same grid as its depth sequence
+// (a SWW-only store otherwise has no terrain to draw the flood on).
+Diagnostics importSwwElevation(const std::string& source, const ImportOptions& o) {
+    auto mesh = SwwMesh::open(source);
+    if (!mesh) return mesh.diagnostics;
+    auto elev = mesh->elevation(0);
+    if (!elev) return elev.diagnostics;
+    double lo = 1e300, hi = -1e300;
+    for (float v : *elev) {
+        lo = std::min(lo, double(v) * o.zScale);
+        hi = std::max(hi, double(v) * o.zScale);
+    }
+    if (o.zScale != 1.0)
+        for (float& v : *elev) v = float(double(v) * o.zScale);
+    Diagnostics warnings;
+    Progress progress(o.quiet);
+    Diagnostics d = withTempStore(o.store, [&](io::StoreWriter& w) -> Diagnostics {
+        auto win = swwGridWindow(w, *mesh, o, source);
+        if (!win) return win.diagnostics;
+        PlacedSource ps;
+        ps.window = *win;
+        ScalarImport si;
+        si.table = o.name.empty() ? "elevation" : o.name;
+        si.units = "m";
+        const double minusInf = -std::numeric_limits<double>::infinity();
+        auto rows = mesh->rasterize(*w.grid(), *win, std::move(*elev), minusInf);
+        auto r = importScalarLayer(w, ps, rows, std::make_pair(std::min(lo, hi), std::max(lo, hi)),
+                                   si, o, source, progress);
+        return r.diagnostics;
+    });
+    warnings.append(d);
+    return warnings;
+}
 Diagnostics importSww(const std::string& source, const ImportOptions& o) {
     auto mesh = SwwMesh::open(source);
     if (!mesh) return mesh.diagnostics;
@@ -564,52 +655,9 @@ Diagnostics importSww(const std::string& source, const ImportOptions& o) {
     Progress progress(o.quiet);
     Diagnostics d = withTempStore(o.store, [&](io::StoreWriter& w) -> Diagnostics {
         Diagnostics e;
-        double minX, minY, maxX, maxY;
-        mesh->bounds(minX, minY, maxX, maxY);
-        if (!w.grid()) {
-            StoreCrs crs = localCrs();
-            if (o.crs) {
-                auto c = crsFromUser(*o.crs);
-                if (!c) return c.diagnostics;
-                crs = *c;
-            } else if (mesh->epsg()) {
-                auto c = crsFromUser("EPSG:" + std::to_string(mesh->epsg()));
-                if (c) crs = *c;
-            }
-            const double p =
-                o.pixelSize ? *o.pixelSize : std::max(maxX - minX, maxY - minY) / 512.0;
-            const int wpx = int(std::ceil((maxX - minX) / p)),
-                      hpx = int(std::ceil((maxY - minY) / p));
-            int levels = 1;
-            while (std::int64_t(o.tileSize) << (levels - 1) < std::max(wpx, hpx)) ++levels;
-            io::TileGrid g;
-            g.srsId = crs.srsId;
-            g.crsName = crs.name;
-            g.crsWkt = crs.wkt;
-            g.minX = minX;
-            g.maxY = maxY;
-            const double size = p * double(std::int64_t(o.tileSize) << (levels - 1));
-            g.maxX = minX + size;
-            g.minY = maxY - size;
-            g.setPyramid(levels, o.tileSize, o.tileSize, p);
-            e.append(w.defineGrid(g));
-            if (e.hasErrors()) return e;
-        }
+        auto win = swwGridWindow(w, *mesh, o, source);
+        if (!win) return win.diagnostics;
         const io::TileGrid& g = *w.grid();
-        const double p = g.levels.back().pixelXSize;
-        const double full = double(g.levels.back().tileWidth) * g.levels.back().matrixWidth;
-        GridWindow win;
-        win.x0 = int(std::clamp(std::floor((minX - g.minX) / p), 0.0, full));
-        win.x1 = int(std::clamp(std::ceil((maxX - g.minX) / p), 0.0, full));
-        win.y0 = int(std::clamp(std::floor((g.maxY - maxY) / p), 0.0, full));
-        win.y1 = int(std::clamp(std::ceil((g.maxY - minY) / p), 0.0, full));
-        if (win.x1 == win.x0 && win.x1 < full) ++win.x1;
-        if (win.y1 == win.y0 && win.y1 < full) ++win.y1;
-        if (win.empty()) {
-            e.error("IMPORT_EXTENT_MISMATCH", source, "",
-                    "mesh extent does not overlap the store extent");
-            return e;
-        }
         io::SequenceSpec spec;
         spec.name = o.name;
         spec.units = o.units.value_or("m");
@@ -625,7 +673,7 @@ Diagnostics importSww(const std::string& source, const ImportOptions& o) {
             return e;
         }
         PlacedSource ps;
-        ps.window = win;
+        ps.window = *win;
         for (int s = 0; s < mesh->steps(); ++s) {
             auto depth = mesh->depth(s);
             if (!depth) return depth.diagnostics;
@@ -643,7 +691,7 @@ Diagnostics importSww(const std::string& source, const ImportOptions& o) {
             si.kind = io::LayerKind::Sequence;
             si.units = spec.units;
             si.minStep = 1.0 / 4096.0;
-            auto rows = mesh->rasterize(g, win, std::move(*depth), o.wetThreshold);
+            auto rows = mesh->rasterize(g, *win, std::move(*depth), o.wetThreshold);
             auto r =
                 importScalarLayer(w, ps, rows, std::make_pair(lo, hi), si, o, source, progress);
             if (!r) return r.diagnostics;

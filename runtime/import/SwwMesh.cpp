@@ -135,6 +135,35 @@ Result<std::vector<float>> SwwMesh::depth(int step) const {
     return stage;
 }
 
+Result<std::vector<float>> SwwMesh::elevation(int step) const {
+    Diagnostics d;
+    NcFile nc;
+    if (nc_open(mPath.c_str(), NC_NOWRITE, &nc.id) != NC_NOERR) {
+        nc.id = -1;
+        d.error("IMPORT_UNREADABLE", mPath, "", "cannot reopen SWW");
+        return d;
+    }
+    const std::size_t np = mX.size();
+    std::vector<float> elev(np);
+    int eId;
+    nc_inq_varid(nc.id, mElevationVar.c_str(), &eId);
+    const std::size_t start[2] = {std::size_t(std::max(step, 0)), 0}, count[2] = {1, np};
+    const int rc = mElevationPerStep ? nc_get_vara_float(nc.id, eId, start, count, elev.data())
+                                     : nc_get_var_float(nc.id, eId, elev.data());
+    if (rc != NC_NOERR) {
+        d.error("IMPORT_SWW", mPath, mElevationVar,
+                std::string("cannot read elevation: ") + nc_strerror(rc));
+        return d;
+    }
+    for (std::size_t i = 0; i < np; ++i)
+        if (!std::isfinite(elev[i])) {
+            d.error("IMPORT_NAN", mPath, mElevationVar,
+                    "elevation is NaN at point " + std::to_string(i));
+            return d;
+        }
+    return elev;
+}
+
 ScalarRowSource SwwMesh::rasterize(const io::TileGrid& grid, const GridWindow& window,
                                    std::vector<float> depth, double wetThreshold) const {
     // Bucket triangles by 256-row band so a strip only visits triangles that can touch it.

@@ -36,13 +36,19 @@ public:
     double y(std::size_t i) const { return mY[i]; }
     const std::vector<int>& triangleIndices() const { return mTri; }
 
+    /**
+     * @brief Bed elevation at every point: the static variable, or step `step` of a per-step one
+     * (dam-break models change the bed). IMPORT_SWW on a read error, IMPORT_NAN on NaN.
+     */
+    Result<std::vector<float>> elevation(int step = 0) const;
     /** @brief depth = stage - elevation at every point for one step (NaN-free). */
     Result<std::vector<float>> depth(int step) const;
 
     /**
      * @brief Rows of a rasterised step on a grid window: pixel centres inside a triangle get the
      * linear interpolation of its vertex depths; depths below `wetThreshold` are 0 (dry);
-     * pixels outside the mesh are NaN.
+     * pixels outside the mesh are NaN. Pass -infinity as `wetThreshold` to rasterise values that
+     * are not depths (bed elevation) unchanged.
      */
     ScalarRowSource rasterize(const io::TileGrid& grid, const GridWindow& window,
                               std::vector<float> depth, double wetThreshold) const;

@@ -1,5 +1,7 @@
 #include "runtime/loader/StoreTileLoader.h"
 
+#include "runtime/anim/ArrivalThresholds.h"
+
 #include <chrono>
 #include <thread>
 
@@ -25,6 +27,26 @@ void markFailure(TilePayload& p, Diagnostics d) {
 }
 
 }  // namespace
+
+void StoreTileLoader::loadArrivalThresholds(const LayerBinding& layer, int frame,
+                                            terrain::TilePayload& p) {
+    io::RasterTile& r0 = *p.raster;
+    const io::SequenceInfo* seq = mReader->info().findSequence(layer.name);
+    std::vector<float> thresholds;
+    if (seq && std::size_t(frame) + 1 < seq->frameTimes.size()) {
+        Result<io::RasterTile> r1 = mReader->readSequenceFrame(layer.name, frame + 1, r0.id);
+        if (!r1.ok()) {
+            p.raster.reset();
+            markFailure(p, std::move(r1.diagnostics));
+            return;
+        }
+        anim::computeArrivalThresholds(r0.values, r1->values, r0.postsX, r0.postsY,
+                                       layer.nodataAs, thresholds);
+    }
+    // The last frame (or a pair of mismatched tiles) switches nowhere.
+    if (thresholds.size() != r0.values.size()) thresholds.assign(r0.values.size(), 0.0f);
+    r0.values = std::move(thresholds);
+}
 
 StoreTileLoader::StoreTileLoader(StoreOpener opener, std::vector<LayerBinding> layers,
                                  terrain::TerrainOptions options)
@@ -109,6 +131,7 @@ TilePayload StoreTileLoader::load(const LoadRequest& request) {
             }
             p.diagnostics.append(r.diagnostics);
             p.raster = std::move(*r.value);
+            if (layer.arrivalThresholds) loadArrivalThresholds(layer, request.key.frame, p);
             break;
         }
     }

@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,13 @@ namespace kiosk::loader {
 struct LayerBinding {
     std::string name;  ///< layer table or sequence name in the store
     io::LayerKind kind = io::LayerKind::Elevation;
+    /**
+     * @brief Sequence only: load the arrival thresholds of the pair (key.frame, key.frame + 1)
+     * instead of a frame (anim::computeArrivalThresholds on this thread; the last frame gives
+     * thresholds 0). Posts as the frame's raster, values in [0, 1].
+     */
+    bool arrivalThresholds = false;
+    std::optional<float> nodataAs = std::nullopt;  ///< arrival: the class nodata counts as
 };
 
 /** @brief Opens this thread's own StoreReader, e.g. `[p] { return io::StoreReader::open(p); }`. */
@@ -43,6 +51,8 @@ public:
     void setArtificialDelay(double seconds) noexcept { mDelaySeconds = seconds; }
 
 private:
+    void loadArrivalThresholds(const LayerBinding& layer, int frame, terrain::TilePayload& p);
+
     StoreOpener mOpener;
     std::vector<LayerBinding> mLayers;
     terrain::TerrainOptions mOptions;

@@ -1,6 +1,7 @@
 #include "runtime/loader/TileLoader.h"
 
 #include <algorithm>
+#include <chrono>
 #include <exception>
 #include <string>
 #include <utility>
@@ -194,6 +195,7 @@ void TileLoader::run() {
         }
 
         terrain::TilePayload payload;
+        const auto loadStart = std::chrono::steady_clock::now();
         try {
             payload = mFunction->load(req);
         } catch (const std::exception& e) {
@@ -207,6 +209,8 @@ void TileLoader::run() {
                                       "unknown exception");
         }
         payload.key = req.key;
+        const double loadSeconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
 
         std::lock_guard<std::mutex> lock(mMutex);
         mLoading = false;
@@ -217,7 +221,7 @@ void TileLoader::run() {
             continue;
         }
         const std::uint32_t slot = (mRingHead + mRingCount) % std::uint32_t(mRing.size());
-        mRing[slot] = LoadResult{req, std::move(payload)};
+        mRing[slot] = LoadResult{req, std::move(payload), loadSeconds};
         ++mRingCount;
     }
     mFunction->threadStopping();

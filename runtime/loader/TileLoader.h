@@ -40,6 +40,7 @@ public:
 struct LoadResult {
     LoadRequest request;
     terrain::TilePayload payload;
+    double loadSeconds = 0.0;  ///< wall time load() took on the loader thread
 };
 
 struct LoaderOptions {

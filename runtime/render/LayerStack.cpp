@@ -45,6 +45,7 @@ float lensMask(vec4 lens, vec2 rotation, float softEdge, vec2 p) {
 int textureUnitsNeeded(const CompositeProgramDesc& desc) {
     int units = 1 + desc.lutCount;  // elevation LUT + transfer-function LUTs
     for (const auto& l : desc.layers) units += l.kind == LayerKind::Sequence ? 2 : 1;
+    for (const auto& l : desc.layers) units += l.kind == LayerKind::Sequence && l.arrival ? 1 : 0;
     return units;
 }
 
@@ -87,6 +88,9 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
         s << "uniform sampler2D uLayer" << i << ";\n";
         if (desc.layers[std::size_t(i)].kind == LayerKind::Sequence)
             s << "uniform sampler2D uLayerB" << i << ";\n";
+        if (desc.layers[std::size_t(i)].kind == LayerKind::Sequence &&
+            desc.layers[std::size_t(i)].arrival)
+            s << "uniform sampler2D uLayerT" << i << ";\nuniform vec4 uLayerRectT" << i << ";\n";
         s << "uniform vec4 uLayerRect" << i << ";\nuniform vec4 uLayerParam" << i << ";\n";
     }
     for (int k = 0; k < desc.lutCount; ++k) {
@@ -142,9 +146,17 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
                     s << "    vec2 d" << i << " = texture(uLayer" << i << ", uv" << i << ").rg;\n";
                 if (l.kind == LayerKind::Sequence) {
                     // Interpolate DATA values, then colour (issue 6): never blend two colours.
-                    s << "    vec2 e" << i << " = texture(uLayerB" << i << ", uv" << i
-                      << ").rg;\n    d" << i << " = mix(d" << i << ", e" << i << ", uLayerParam"
-                      << i << ".y);\n";
+                    s << "    vec2 e" << i << " = texture(uLayerB" << i << ", uv" << i << ").rg;\n";
+                    if (l.arrival) {
+                        // Arrival: each pixel switches class when alpha passes its threshold.
+                        s << "    vec2 t" << i << " = texture(uLayerT" << i
+                          << ", (vScenePos - uLayerRectT" << i << ".xy) * uLayerRectT" << i << ".zw).rg;\n    d" << i
+                          << " = uLayerParam" << i << ".y >= t" << i << ".r / max(t" << i
+                          << ".g, 1e-6) ? e" << i << " : d" << i << ";\n";
+                    } else {
+                        s << "    d" << i << " = mix(d" << i << ", e" << i << ", uLayerParam" << i
+                          << ".y);\n";
+                    }
                 }
                 s << "    vec4 L" << i << " = vec4(0.0);\n"
                   << "    {\n        float v = d" << i << ".r / max(d" << i << ".g, 1e-6);\n";

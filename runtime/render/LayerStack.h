@@ -40,6 +40,12 @@ struct CompositeLayer {
      * from the mesh): hypsometric tinting without a texture. Its uLayer sampler is unused.
      */
     bool fromElevation = false;
+    /**
+     * @brief Sequence of class data with `interpolate: "arrival"`: a third texture (uLayerT,
+     * placed by uLayerRectT) holds per-pixel thresholds in [0, 1] and the value is
+     * `alpha >= threshold ? v1 : v0` (the front sweeps across; classes are never blended).
+     */
+    bool arrival = false;
 };
 
 /** @brief Lens kinds of Döllner §5 / Trapp's focus+context. */

@@ -43,6 +43,10 @@ Result<TerrainRenderer> TerrainRenderer::create(const CompositeProgramDesc& desc
         const std::string n = std::to_string(i);
         r.mLayerLocs.push_back({loc("uLayer" + n), loc("uLayerB" + n), loc("uLayerRect" + n),
                                 loc("uLayerParam" + n)});
+        if (desc.layers[i].arrival) {
+            r.mLayerLocs.back().texT = loc("uLayerT" + n);
+            r.mLayerLocs.back().rectT = loc("uLayerRectT" + n);
+        }
     }
     for (int k = 0; k < desc.lutCount; ++k) {
         const std::string n = std::to_string(k);
@@ -57,6 +61,7 @@ Result<TerrainRenderer> TerrainRenderer::create(const CompositeProgramDesc& desc
         const bool scalar = l.kind == LayerKind::Data || l.kind == LayerKind::Sequence;
         r.mLayerSlots.push_back({unit, scalar ? lutRank : 0});
         unit += l.kind == LayerKind::Sequence ? 2 : 1;
+        unit += l.kind == LayerKind::Sequence && l.arrival ? 1 : 0;  // threshold texture
         lutRank += scalar ? 1 : 0;
     }
     for (std::size_t j = 0; j < desc.lenses.size(); ++j)
@@ -144,6 +149,13 @@ void TerrainRenderer::setLayer(int index, const LayerBinding& b) {
         glActiveTexture(GLenum(GL_TEXTURE0 + unit + 1));
         glBindTexture(GL_TEXTURE_2D, b.valid && b.textureB ? b.textureB : mNeutral.id());
         glUniform1i(l.texB, unit + 1);
+    }
+    if (l.texT >= 0) {
+        glActiveTexture(GLenum(GL_TEXTURE0 + unit + 2));
+        glBindTexture(GL_TEXTURE_2D, b.valid && b.textureT ? b.textureT : mNeutral.id());
+        glUniform1i(l.texT, unit + 2);
+        glUniform4f(l.rectT, float(b.westT - mSceneOrigin.x), float(b.northT - mSceneOrigin.y),
+                    float(1.0 / b.widthT), float(-1.0 / b.heightT));
     }
     // uv = (scenePos - (west, north)) * (1/width, -1/height): row 0 of a texture is its north edge.
     glUniform4f(l.rect, float(b.west - mSceneOrigin.x), float(b.north - mSceneOrigin.y),

@@ -44,6 +44,9 @@ struct LayerBinding {
     float strength = 1.0f;  ///< opacity or weight
     float alpha = 0.0f;     ///< Sequence: interpolation parameter
     bool valid = false;     ///< false: the layer contributes nothing on this tile
+    /** @brief Arrival sequences: threshold texture and its scene rectangle (as west..height). */
+    GLuint textureT = 0;
+    double westT = 0, northT = 0, widthT = 1, heightT = 1;
 };
 
 struct LutBinding {
@@ -99,6 +102,7 @@ public:
 private:
     struct LayerLoc {
         GLint tex = -1, texB = -1, rect = -1, param = -1;
+        GLint texT = -1, rectT = -1;  ///< arrival sequences only
     };
     struct LutLoc {
         GLint tex = -1, domain = -1, size = -1, nodata = -1, below = -1, above = -1;

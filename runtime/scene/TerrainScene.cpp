@@ -46,7 +46,7 @@ render::LayerOp compositeOp(config::OperationType t) {
 anim::Interpolation interpolationOf(const config::Layer& l, const io::SequenceInfo* seq) {
     switch (l.interpolate) {
         case config::SequenceInterpolation::None: return anim::Interpolation::None;
-        case config::SequenceInterpolation::Arrival: return anim::Interpolation::Categorical;
+        case config::SequenceInterpolation::Arrival: return anim::Interpolation::Arrival;
         case config::SequenceInterpolation::Data: break;
     }
     // Class data (burn state) is never blended, whatever the author asked.
@@ -170,6 +170,16 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
                     sl.specB = int(setup.textures.size());
                     setup.textures.push_back({std::uint16_t(sl.keyLayer), 0, maxLevel});
                 }
+                if (cl.kind == config::LayerKind::Sequence &&
+                    sl.interpolation == anim::Interpolation::Arrival) {
+                    // Per-pixel thresholds of each frame pair, computed by the loader thread.
+                    sl.keyLayerT = int(bindings.size());
+                    bindings.push_back(
+                        {sl.sequence->name, io::LayerKind::Sequence, true, sl.nodataAs});
+                    sl.specT = int(setup.textures.size());
+                    setup.textures.push_back({std::uint16_t(sl.keyLayerT), 0, maxLevel});
+                    comp.arrival = true;
+                }
             }
         } else {
             const io::LayerInfo* li = info.findLayer(cl.source.layer);
@@ -205,6 +215,10 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
         if (sl.keyLayer >= 0) {
             s->mKeyLayerStatus.resize(std::size_t(sl.keyLayer) + 1, -1);
             s->mKeyLayerStatus[std::size_t(sl.keyLayer)] = int(s->mStatus.size());
+        }
+        if (sl.keyLayerT >= 0) {
+            s->mKeyLayerStatus.resize(std::size_t(sl.keyLayerT) + 1, -1);
+            s->mKeyLayerStatus[std::size_t(sl.keyLayerT)] = int(s->mStatus.size());
         }
         s->mStatus.push_back(status);
         desc.layers.push_back(comp);
@@ -352,6 +366,7 @@ void TerrainScene::drainCompletions() {
     // The budget is checked before each pop: what stays in the loader's completion ring is
     // uploaded next frame, so a burst of arrivals never makes one long frame.
     while (mBudget.allow(0) && mLoader->tryPop(result)) {
+        recordLoadTime(result);
         terrain::TilePayload& p = result.payload;
         if (p.key.layer == 0) {
             if (p.stats) mStats.set(p.key.id, *p.stats);
@@ -404,10 +419,13 @@ void TerrainScene::update(const math::Camera& camera, double time) {
         wanted[i] = anim::bracketFrames(l.sequence->frameTimes, time, l.interpolation);
         mSelector.setTextureFrame(std::size_t(l.specA), std::int32_t(wanted[i].i0));
         if (l.specB >= 0) mSelector.setTextureFrame(std::size_t(l.specB), std::int32_t(wanted[i].i1));
+        if (l.specT >= 0)
+            mSelector.setTextureFrame(std::size_t(l.specT), std::int32_t(wanted[i].i0));
     }
     mSelection = &mSelector.select(camera, mStats, *mResidency);
     mFrame.requests = std::uint32_t(mSelection->requests.size());
-    mLoader->submit(mSelection->requests);
+    // Submitted at the end of update() together with the sequences' frames ahead.
+    for (const auto& r : mSelection->requests) mLoader->request(r.key, r.priority);
     if (!mSelection->requests.empty() && log::threshold() == log::Level::Debug) {
         const auto& k = mSelection->requests.front().key;
         KIOSK_LOG_DEBUG(kTag, "%zu requests, first layer %u frame %d tile %d/%d/%d", mSelection->requests.size(),
@@ -421,8 +439,9 @@ void TerrainScene::update(const math::Camera& camera, double time) {
         const anim::FrameBracket& w = wanted[i];
         const bool completeA = sequenceFrameComplete(l, true);
         const bool completeB = l.specB < 0 || w.i1 == w.i0 ? completeA : sequenceFrameComplete(l, false);
+        const bool completeT = l.specT < 0 || specComplete(l.specT);  // arrival thresholds
         for (const auto& t : mSelection->tiles) {
-            for (int spec : {l.specA, l.specB}) {
+            for (int spec : {l.specA, l.specB, l.specT}) {
                 if (spec < 0 || int(t.textureCount) <= spec) continue;
                 const auto& a = mSelection->textures[t.firstTexture + std::uint32_t(spec)];
                 mFrame.sequenceTilesMissing += (!a.handle.valid() || a.fromAncestor) ? 1u : 0u;
@@ -431,11 +450,13 @@ void TerrainScene::update(const math::Camera& camera, double time) {
         // Atomic steps: a new frame pair becomes visible only when every tile of the view has
         // both its frames; until then the last complete pair stays (never a mix of times).
         l.shown = l.pair.update(w, l.sequence->frameTimes, time, [&](std::size_t frame) {
-            return frame == w.i0 ? completeA : completeB;
+            return (frame == w.i0 ? completeA : completeB) && completeT;
         });
         if (l.shown.hasPair && (l.shown.i0 != w.i0 || l.shown.i1 != w.i1)) {
             mSelector.setTextureFrame(std::size_t(l.specA), std::int32_t(l.shown.i0));
             if (l.specB >= 0) mSelector.setTextureFrame(std::size_t(l.specB), std::int32_t(l.shown.i1));
+            if (l.specT >= 0)
+                mSelector.setTextureFrame(std::size_t(l.specT), std::int32_t(l.shown.i0));
             reselect = true;
         }
         if (!l.shown.hasPair) {
@@ -444,6 +465,7 @@ void TerrainScene::update(const math::Camera& camera, double time) {
             l.shown.alpha = w.alpha;
         }
         mFrame.holdingSequence = mFrame.holdingSequence || l.shown.holding;
+        countPrefetchHits(l, i == mFirstSequenceLayer);
     }
     if (reselect) mSelection = &mSelector.select(camera, mStats, *mResidency);
 
@@ -451,6 +473,10 @@ void TerrainScene::update(const math::Camera& camera, double time) {
     mFrame.residentBytes = mCache->cpuBytes() + mCache->gpuBytes();
     mSettled = !requestsPending && mLoader->inFlight() == 0 && !mFrame.holdingSequence &&
                mSelection->counters.tilesFromAncestor == 0;
+    planSequencePrefetch();
+    for (const auto& r : mSequencePrefetch) mLoader->request(r.key, r.priority);
+    mLoader->submit();
+    sendPrefetch();
 }
 
 void TerrainScene::prefetch(const math::Camera& futureCamera) {
@@ -462,20 +488,10 @@ void TerrainScene::prefetch(const math::Camera& futureCamera) {
     }
     const auto& sel = mPrefetchSelector.select(futureCamera, mStats, *mPrefetchResidency);
     mPrefetch.assign(sel.requests.begin(), sel.requests.end());
-    // Next frame pairs of each sequence for the tiles on screen now: the playhead's deadline.
-    if (mSelection) {
-        for (const auto& l : mLayers) {
-            if (!l.sequence || l.specA < 0) continue;
-            const std::size_t nextFrame = std::min(l.shown.i1 + 1, l.sequence->frameTimes.size() - 1);
-            for (const auto& t : mSelection->tiles) {
-                if (int(t.textureCount) <= l.specA) continue;
-                terrain::TileKey key = mSelection->textures[t.firstTexture + std::uint32_t(l.specA)].wanted;
-                key.frame = std::int32_t(nextFrame);
-                if (!mCache->find(key).valid()) mPrefetch.push_back({key, 0.5});
-            }
-        }
-    }
-    mLoader->prefetch(mPrefetch);
+    // Sequence frames ahead of the playhead are planned in update() (planSequencePrefetch) for
+    // the view now; here the same frames for the view the camera path is heading to.
+    addPathFramePrefetch(sel);
+    sendPrefetch();
 }
 
 render::LayerBinding TerrainScene::bindingFor(const terrain::TextureAssignment& a, int postsX,
@@ -585,6 +601,7 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
                     b.textureB = bb.handle.valid() ? mGpu[bb.handle.index()].texture.id() : b.texture;
                     b.alpha = float(l.shown.alpha);
                 }
+                if (l.specT >= 0) bindArrival(l, t, b);
             }
             b.strength = l.strength;
             r.setLayer(int(li), b);

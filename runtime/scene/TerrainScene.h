@@ -6,6 +6,7 @@
 
 #include "config/Scenario.h"
 #include "runtime/anim/FrameBracket.h"
+#include "runtime/anim/PrefetchPlanner.h"
 #include "runtime/anim/VisiblePair.h"
 #include "runtime/core/Result.h"
 #include "runtime/gl/Context.h"
@@ -17,6 +18,7 @@
 #include "runtime/math/Frustum.h"
 #include "runtime/render/GpuMesh.h"
 #include "runtime/render/TerrainRenderer.h"
+#include "runtime/scene/Playback.h"
 #include "runtime/terrain/TilePayload.h"
 #include "runtime/terrain/TileSelector.h"
 #include "runtime/terrain/TileStatsTable.h"
@@ -52,6 +54,15 @@ struct SceneFrameInfo {
     bool sequencePairCommitted = false;
     /** @brief Drawn tiles whose shown frame came from an ancestor or was absent. */
     std::uint32_t shownTilesIncomplete = 0;
+    // Prefetch ahead of the playhead (first sequence layer; docs/animation.md).
+    std::uint32_t heldFrames = 0;        ///< consecutive frames the shown pair was held
+    std::int32_t prefetchDepth = 0;      ///< frames ahead wanted by the deadline rule
+    std::uint32_t prefetchFrames = 0;    ///< frames in this frame's plan (current pair included)
+    std::uint32_t prefetchRequests = 0;  ///< sequence tiles requested ahead this frame
+    /** @brief Frames that became shown this frame after being requested ahead (0, 1 or 2). */
+    std::uint32_t prefetchHits = 0;
+    std::uint64_t prefetchGeneration = 0;  ///< bumped on each seek (stale prefetch dropped)
+    double frameLoadMs = 0;                ///< measured mean time to load one frame of the view
 };
 
 /** @brief A transfer function ready for the GPU and the legend. */
@@ -84,6 +95,13 @@ public:
      * within the per-frame budget, and pick each sequence's visible frame pair.
      */
     void update(const math::Camera& camera, double time);
+    /**
+     * @brief update() with the clock's playback state: sequences prefetch frames ahead of the
+     * playhead sized from `playback.rate` and the measured load time, under the cache budget,
+     * wrapping to the loop start. Without it the last playback given is used (initially paused:
+     * the current pair and its neighbours).
+     */
+    void update(const math::Camera& camera, double time, const Playback& playback);
     /** @brief Request tiles for a future view (camera path prefetch); low priority. */
     void prefetch(const math::Camera& futureCamera);
     void draw(const math::Camera& camera, const render::TerrainStyle& style);
@@ -126,6 +144,13 @@ private:
         anim::DisplayPair shown;
         float strength = 1.0f;
         std::optional<float> nodataAs;
+        anim::PrefetchPlanner planner;
+        anim::PrefetchPlan plan;
+        std::vector<std::uint8_t> aheadRequested;  ///< per frame: planned ahead, not yet shown
+        std::size_t lastI0 = SIZE_MAX, lastI1 = SIZE_MAX;  ///< pair shown last frame
+        bool lastHolding = false;
+        /** @brief interpolate "arrival": key layer and texture spec of the pair thresholds. */
+        int keyLayerT = -1, specT = -1;
     };
 
     Diagnostics buildRenderer();
@@ -136,6 +161,15 @@ private:
     void releaseEvicted();
     void noteFailure(const terrain::TilePayload& payload);
     bool sequenceFrameComplete(const StackLayer& layer, bool useA) const;
+    // TerrainScenePrefetch.cpp: sequence prefetch ahead of the playhead.
+    void planSequencePrefetch();
+    void countPrefetchHits(StackLayer& layer, bool reported);
+    void recordLoadTime(const loader::LoadResult& result);
+    void sendPrefetch();
+    void addPathFramePrefetch(const terrain::SelectionResult& future);
+    bool specComplete(int spec) const;
+    void bindArrival(const StackLayer& layer, const terrain::DrawTile& tile,
+                     render::LayerBinding& binding) const;
     render::LayerBinding bindingFor(const terrain::TextureAssignment& a, int postsX, int postsY) const;
 
     const config::Scenario* mScenario = nullptr;
@@ -170,6 +204,10 @@ private:
     double mTime = 0;
     std::size_t mFirstSequenceLayer = SIZE_MAX;  ///< the layer whose frames frameInfo() reports
     bool mSettled = false;
+    Playback mPlayback;
+    anim::LoadTimeEstimator mTileLoad{0.005};  ///< seconds per sequence tile on the loader
+    std::vector<terrain::TileRequest> mSequencePrefetch;
+    std::vector<terrain::TileRequest> mPrefetchAll;  ///< camera prefetch still missing, as sent
 };
 
 }  // namespace kiosk::scene

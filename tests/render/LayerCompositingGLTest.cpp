@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "runtime/anim/ArrivalThresholds.h"
 #include "runtime/render/Textures.h"
 #include "runtime/render/TerrainRenderer.h"
 #include "tests/support/EglTestContext.h"
@@ -238,6 +239,64 @@ TEST_F(DataLayerGLTest, SequenceInterpolatesDataBeforeTheLut) {
     EXPECT_DN_NEAR(render(*r, {binding}), dn(colourAt(0.6f)));
 }
 
+// interpolate "arrival" (issue 6): class data switch per pixel when alpha passes the pixel's
+// threshold (from anim::computeArrivalThresholds), so the burn front sweeps from the old
+// perimeter to the new one and no class is ever blended.
+TEST_F(DataLayerGLTest, ArrivalSweepsTheFrontWithoutBlendingClasses) {
+    CompositeProgramDesc desc{{{LayerKind::Sequence, LayerOp::Over, -1}}, {}, 1};
+    desc.layers[0].arrival = true;
+    auto r = TerrainRenderer::create(desc);
+    ASSERT_TRUE(r.ok()) << r.diagnostics.format();
+    makeLut();  // class 0 -> blue, class 1 -> (64, 0, 191), class 4 would be red
+    r->setLut(0, mLutBinding);
+    // 64 x 64 texels over the 1 km tile: burned (class 1) west of 250 m in frame 0, west of
+    // 750 m in frame 1. Pixel centres fall between texel pairs of the same class.
+    constexpr int n = 64;
+    std::vector<float> f0(n * n), f1(n * n);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            f0[std::size_t(y * n + x)] = x < 16 ? 1.0f : 0.0f;
+            f1[std::size_t(y * n + x)] = x < 48 ? 1.0f : 0.0f;
+        }
+    std::vector<float> thr;
+    anim::computeArrivalThresholds(f0, f1, n, n, std::nullopt, thr);
+    ASSERT_EQ(thr.size(), f0.size());
+    auto t0 = makeScalarTexture(n, n, f0.data(), std::nullopt);
+    auto t1 = makeScalarTexture(n, n, f1.data(), std::nullopt);
+    auto tt = makeScalarTexture(n, n, thr.data(), std::nullopt);
+    auto binding = bind(t0);
+    binding.textureB = t1.id();
+    binding.textureT = tt.id();
+    binding.westT = 0;
+    binding.northT = 1000;
+    binding.widthT = 1000;
+    binding.heightT = 1000;
+    // Burned columns (pixel x < front) for each alpha: the front moves from 250 m to 750 m.
+    for (float alpha : {0.0f, 0.25f, 0.5f, 0.75f, 1.0f}) {
+        binding.alpha = alpha;
+        render(*r, {binding});
+        auto img = mTarget->readColor();
+        int burned = 0;
+        for (int x = 0; x < kSize; ++x) {
+            const auto* p = img.pixel(x, kSize / 2);
+            const glm::ivec3 c(p[0], p[1], p[2]);
+            const bool isBurned = std::abs(c.r - lutDn(1).r) <= 1 && std::abs(c.b - lutDn(1).b) <= 1;
+            const bool isUnburned = std::abs(c.r - lutDn(0).r) <= 1 && std::abs(c.b - lutDn(0).b) <= 1;
+            ASSERT_TRUE(isBurned || isUnburned)
+                << "alpha " << alpha << " pixel " << x << " blends classes: " << c.r << "," << c.b;
+            burned += isBurned;
+            if (x > 0 && isBurned) {
+                const auto* q = img.pixel(x - 1, kSize / 2);
+                EXPECT_EQ(q[0], p[0]) << "alpha " << alpha << ": burned pixel " << x
+                                      << " east of an unburned one (the front is not one line)";
+            }
+        }
+        // The front is at 250 m + alpha * 500 m; the view spans x 250..750 m (range 600 m at
+        // 45 degrees), so alpha of the 32 columns are burned, within one pixel.
+        EXPECT_NEAR(burned, alpha * kSize, 1.5) << "alpha " << alpha;
+    }
+}
+
 TEST_F(LayerCompositingGLTest, HighlightLensRaisesInsideLowersOutside) {
     CompositeProgramDesc desc{{}, {{LensKind::Highlight, -1, -1}}, 0};
     auto r = TerrainRenderer::create(desc);
@@ -295,6 +354,22 @@ TEST_F(LayerCompositingGLTest, RotatedEllipticalLensAndSoftEdge) {
     const glm::ivec3 rim = render(*r, {}, 16, 5);
     EXPECT_LT(rim.b, dn(kBase * 1.5f).b - 5);
     EXPECT_GT(rim.b, dn(kBase * 0.5f).b + 5);
+}
+
+TEST(LayerStackTest, ArrivalSequenceSwitchesOnAThresholdTexture) {
+    CompositeProgramDesc desc{{{LayerKind::Sequence, LayerOp::Over, -1}}, {}, 1};
+    EXPECT_EQ(textureUnitsNeeded(desc), 4);  // elevation LUT, transfer LUT, two frames
+    auto data = generateCompositeShader(desc, 16);
+    ASSERT_TRUE(data.ok());
+    EXPECT_NE(data->find("mix(d0, e0, uLayerParam0.y)"), std::string::npos);
+    EXPECT_EQ(data->find("uLayerT0"), std::string::npos);
+    desc.layers[0].arrival = true;
+    EXPECT_EQ(textureUnitsNeeded(desc), 5);  // + the pair's thresholds
+    auto arrival = generateCompositeShader(desc, 16);
+    ASSERT_TRUE(arrival.ok());
+    EXPECT_NE(arrival->find("uniform sampler2D uLayerT0;"), std::string::npos);
+    EXPECT_NE(arrival->find("uLayerParam0.y >= t0.r / max(t0.g, 1e-6) ? e0 : d0"), std::string::npos);
+    EXPECT_EQ(arrival->find("mix(d0, e0"), std::string::npos) << "classes must never be mixed";
 }
 
 TEST(LayerStackTest, TooManyLayersIsReported) {

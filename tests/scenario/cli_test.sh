@@ -72,6 +72,9 @@ else echo "FAIL: two renders of the same time differ"; fail=$((fail + 1)); fi
 if grep -q '"tiles_drawn"' "$tmp/s.json" && grep -q '"p99"' "$tmp/s.json"; then
     echo "ok:   --stats has per-frame arrays and a summary"; pass=$((pass + 1))
 else echo "FAIL: --stats JSON incomplete"; fail=$((fail + 1)); fi
+if grep -q '"prefetch_depth"' "$tmp/s.json" && grep -q '"sequence_missing_frames"' "$tmp/s.json"; then
+    echo "ok:   --stats has the sequence prefetch figures"; pass=$((pass + 1))
+else echo "FAIL: --stats lacks prefetch_depth / sequence_missing_frames"; fail=$((fail + 1)); fi
 # The demo clock runs 1200 data seconds per second: one hour is 3 s of playback, 3 frames at 1 fps
 # plus the closing frame.
 expect 0 "wrote 4 frames" "$GK" render $DEMO --out "$tmp/seq/" --from +0 --to +1h --fps 1 --size 160x90

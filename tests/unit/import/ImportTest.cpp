@@ -682,6 +682,106 @@ TEST(ImportSequence, AnugaSwwDepthMatchesStageMinusElevation) {
     EXPECT_GT(wet, 0);
 }
 
+// `import elevation X.sww`: the bed rasterised on the grid its depth sequence uses, so a
+// SWW-only store has a terrain (issue 6, ANUGA replay).
+TEST(ImportElevation, AnugaSwwBedSharesTheDepthGrid) {
+    const std::string sww = sharedData("anuga_sww_flood_timeseries/Small_catchment_testcase.sww");
+    if (sww.empty()) GTEST_SKIP() << "../shared/data not present (set KIOSK_SHARED_DATA)";
+    const fs::path dir = testDir();
+    const fs::path store = dir / "s.gpkg";
+    ImportOptions o = options(store);
+    Diagnostics d = importElevation(sww, o);
+    ASSERT_FALSE(d.hasErrors()) << d.format();
+    ImportOptions so = options(store);
+    so.name = "flood";
+    d = importSequence({sww}, so);
+    ASSERT_FALSE(d.hasErrors()) << d.format();
+
+    // The grid an elevation-first store gets is the one a sequence-only import defines.
+    const fs::path alone = dir / "alone.gpkg";
+    ImportOptions ao = options(alone);
+    ao.name = "flood";
+    ASSERT_FALSE(importSequence({sww}, ao).hasErrors());
+    auto r = openStore(store);
+    auto ra = openStore(alone);
+    const auto& g = r->info().grid;
+    const auto& ga = ra->info().grid;
+    EXPECT_DOUBLE_EQ(g.minX, ga.minX);
+    EXPECT_DOUBLE_EQ(g.maxY, ga.maxY);
+    ASSERT_EQ(g.levels.size(), ga.levels.size());
+    EXPECT_DOUBLE_EQ(g.levels.back().pixelXSize, ga.levels.back().pixelXSize);
+    const auto* elev = r->info().findLayer("elevation");
+    ASSERT_NE(elev, nullptr);
+    EXPECT_EQ(elev->kind, io::LayerKind::Elevation);
+    EXPECT_EQ(elev->levels, int(g.levels.size()));
+    ASSERT_NE(r->info().findSequence("flood"), nullptr);
+
+    // Independent read of the bed: at a pixel centre the linear interpolation of the vertex
+    // elevations of the triangle holding it (ANUGA meshes have per-triangle vertices, so the
+    // bed is discontinuous: compare with the containing triangle, not the nearest vertex).
+    int id;
+    ASSERT_EQ(nc_open(sww.c_str(), NC_NOWRITE, &id), NC_NOERR);
+    int v, dim;
+    std::size_t np, nv;
+    nc_inq_dimid(id, "number_of_points", &dim);
+    nc_inq_dimlen(id, dim, &np);
+    nc_inq_dimid(id, "number_of_volumes", &dim);
+    nc_inq_dimlen(id, dim, &nv);
+    std::vector<double> x(np), y(np);
+    std::vector<float> z(np);
+    std::vector<int> tri(nv * 3);
+    nc_inq_varid(id, "x", &v);
+    nc_get_var_double(id, v, x.data());
+    nc_inq_varid(id, "y", &v);
+    nc_get_var_double(id, v, y.data());
+    nc_inq_varid(id, "volumes", &v);
+    nc_get_var_int(id, v, tri.data());
+    nc_inq_varid(id, "elevation", &v);
+    int nd = 0;
+    nc_inq_varndims(id, v, &nd);
+    const std::size_t start[2] = {0, 0}, count[2] = {1, np};
+    if (nd == 2)
+        nc_get_vara_float(id, v, start, count, z.data());
+    else
+        nc_get_var_float(id, v, z.data());
+    double xll = 0, yll = 0;
+    nc_get_att_double(id, NC_GLOBAL, "xllcorner", &xll);
+    nc_get_att_double(id, NC_GLOBAL, "yllcorner", &yll);
+    nc_close(id);
+    const float zMin = *std::min_element(z.begin(), z.end());
+    const float zMax = *std::max_element(z.begin(), z.end());
+    EXPECT_NEAR(elev->minValue, zMin, 0.05 * (zMax - zMin) + 0.01);
+    EXPECT_NEAR(elev->maxValue, zMax, 0.05 * (zMax - zMin) + 0.01);
+    const double p = g.levels.back().pixelXSize;
+    const int L = g.maxLevel();
+    std::mt19937 rng(5);
+    int checked = 0;
+    for (int n = 0; n < 400 && checked < 150; ++n) {
+        const std::size_t vi = std::size_t(tri[(rng() % nv) * 3]);
+        const int gx = int((x[vi] + xll - g.minX) / p), gy = int((g.maxY - (y[vi] + yll)) / p);
+        const double cx = g.minX + (gx + 0.5) * p - xll, cy = g.maxY - (gy + 0.5) * p - yll;
+        double expected = std::nan("");
+        for (std::size_t t = 0; t < nv; ++t) {
+            const int a = tri[t * 3], b = tri[t * 3 + 1], c = tri[t * 3 + 2];
+            const double det = (y[b] - y[c]) * (x[a] - x[c]) + (x[c] - x[b]) * (y[a] - y[c]);
+            const double l1 = ((y[b] - y[c]) * (cx - x[c]) + (x[c] - x[b]) * (cy - y[c])) / det;
+            const double l2 = ((y[c] - y[a]) * (cx - x[c]) + (x[a] - x[c]) * (cy - y[c])) / det;
+            const double l3 = 1 - l1 - l2;
+            if (l1 < -1e-9 || l2 < -1e-9 || l3 < -1e-9) continue;
+            expected = l1 * z[a] + l2 * z[b] + l3 * z[c];
+            break;
+        }
+        if (std::isnan(expected)) continue;
+        auto tile = r->readElevation("elevation", TileId{L, gx / 256, gy / 256});
+        ASSERT_TRUE(tile.ok()) << tile.diagnostics.format();
+        // Within the store's quantisation of the bed's range.
+        EXPECT_NEAR(tile->at(gx % 256, gy % 256), expected, 0.02 + 1e-4 * (zMax - zMin))
+            << gx << "," << gy;
+        ++checked;
+    }
+    EXPECT_GT(checked, 100);
+}
+
 TEST(ImportSequence, Cell2FireBurnGridsKeepTheirCounts) {
     const std::string grids = sharedData("cell2fire_fire_spread/Harvest40x40/Grids/Grids1");
     if (grids.empty()) GTEST_SKIP() << "../shared/data not present (set KIOSK_SHARED_DATA)";

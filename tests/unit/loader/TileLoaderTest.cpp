@@ -224,6 +224,39 @@ TEST(TileLoader, PrefetchOnlyWhenFrameQueueIsEmpty) {
     EXPECT_FALSE(results[1].request.prefetch);
 }
 
+// Scrubbing (issue 6): the scene sends the prefetch plan of the new playhead; the queued
+// requests of the old one are dropped without being loaded.
+TEST(TileLoader, NewPrefetchSetDropsTheOldOne) {
+    Recorder rec;
+    TileLoader loader(LoaderOptions{32, 64}, std::make_unique<RecordingLoad>(rec, key(100)));
+    loader.request(key(100), 1.0);
+    loader.submit();
+    rec.waitInGate();
+    loader.prefetch({terrain::TileRequest{key(50), 1000.0}, terrain::TileRequest{key(51), 2000.0}});
+    loader.prefetch({terrain::TileRequest{key(60), 1.0}});
+    rec.open();
+    const auto results = drain(loader, 2);
+    ASSERT_EQ(results.size(), 2u);
+    LoadResult extra;
+    std::this_thread::sleep_for(20ms);
+    EXPECT_FALSE(loader.tryPop(extra));
+    EXPECT_EQ(rec.snapshot(), (std::vector<TileKey>{key(100), key(60)}));
+    EXPECT_GE(loader.counters().droppedStale, 2u);
+}
+
+// The scene's load-time estimate (prefetch depth) comes from the loader's own measurement.
+TEST(TileLoader, ResultsCarryTheirLoadTime) {
+    Recorder rec;
+    rec.delayUs = 3000;
+    TileLoader loader(LoaderOptions{32, 64}, std::make_unique<RecordingLoad>(rec, key(100)));
+    loader.request(key(1), 1.0);
+    loader.submit();
+    const auto results = drain(loader, 1);
+    ASSERT_EQ(results.size(), 1u);
+    EXPECT_GE(results[0].loadSeconds, 0.003);
+    EXPECT_LT(results[0].loadSeconds, 2.0);
+}
+
 TEST(TileLoader, InvalidateDiscardsWorkStartedBefore) {
     Recorder rec;
     TileLoader loader(LoaderOptions{32, 64}, std::make_unique<RecordingLoad>(rec, key(100)));
