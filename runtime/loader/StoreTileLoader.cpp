@@ -1,5 +1,6 @@
 #include "runtime/loader/StoreTileLoader.h"
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -77,7 +78,8 @@ TilePayload StoreTileLoader::load(const LoadRequest& request) {
             p.diagnostics.append(r.diagnostics);
             p.stats = r->stats;
             Result<terrain::TileMesh> mesh =
-                terrain::buildTileMesh(*r, mReader->info().grid, mOptions, mMesher);
+                terrain::buildTileMesh(*r, mReader->info().grid, mOptions, mMesher,
+                                       std::max(0, int(request.key.frame)));
             if (!mesh.ok()) {
                 p.status = TilePayload::Status::Failed;
                 for (Diagnostic d : mesh.diagnostics.items()) {

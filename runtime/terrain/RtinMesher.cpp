@@ -30,7 +30,7 @@ inline long long edgeFn(int ax, int ay, int bx, int by, int px, int py) {
 }  // namespace
 
 MeshParams MeshParams::forTile(const io::TileGrid& grid, const TileId& id,
-                               const TerrainOptions& options, double tileError) {
+                               const TerrainOptions& options, double tileError, int tier) {
     MeshParams p;
     if (id.level < 0 || id.level > grid.maxLevel()) return p;
     double x0, y0, x1, y1;
@@ -40,8 +40,8 @@ MeshParams MeshParams::forTile(const io::TileGrid& grid, const TileId& id,
     p.originY = y1;
     p.pixelX = m.pixelXSize;
     p.pixelY = m.pixelYSize;
-    p.tolerance = options.tinTolerance(tileError);
-    p.skirtDepth = options.skirtDepth(grid, id.level, tileError);
+    p.tolerance = options.tinTolerance(tileError, tier);
+    p.skirtDepth = options.skirtDepth(grid, id.level, tileError, tier);
     return p;
 }
 
@@ -365,7 +365,7 @@ Result<TileMesh> RtinMesher::build(const io::RasterTile& tile, const MeshParams&
 }
 
 Result<TileMesh> buildTileMesh(const io::RasterTile& tile, const io::TileGrid& grid,
-                               const TerrainOptions& options, RtinMesher& mesher) {
+                               const TerrainOptions& options, RtinMesher& mesher, int tier) {
     if (tile.id.level < 0 || tile.id.level > grid.maxLevel()) {
         Diagnostics d;
         d.error("TERRAIN_TILE_LEVEL", "", tileName(tile.id),
@@ -374,7 +374,7 @@ Result<TileMesh> buildTileMesh(const io::RasterTile& tile, const io::TileGrid& g
         return Result<TileMesh>(std::move(d));
     }
     const MeshParams params =
-        MeshParams::forTile(grid, tile.id, options, double(tile.stats.geometricError));
+        MeshParams::forTile(grid, tile.id, options, double(tile.stats.geometricError), tier);
     return mesher.build(tile, params);
 }
 

@@ -85,7 +85,7 @@ struct MeshParams {
 
     /** @brief Params for tile `id` of `grid` using `options` and the tile's stored error. */
     static MeshParams forTile(const io::TileGrid& grid, const TileId& id,
-                              const TerrainOptions& options, double tileError);
+                              const TerrainOptions& options, double tileError, int tier = 0);
 };
 
 /**
@@ -136,9 +136,10 @@ private:
 
 /**
  * @brief Convenience for the loader: mesh of an elevation tile with the tolerance and skirt
- * depth that `options` prescribe for its level (errors name the tile).
+ * depth that `options` prescribe for its level and tolerance tier (the elevation key's frame;
+ * errors name the tile).
  */
 Result<TileMesh> buildTileMesh(const io::RasterTile& tile, const io::TileGrid& grid,
-                               const TerrainOptions& options, RtinMesher& mesher);
+                               const TerrainOptions& options, RtinMesher& mesher, int tier = 0);
 
 }  // namespace kiosk::terrain
