@@ -41,8 +41,9 @@ struct TerrainOptions {
 
     /**
      * @brief How many levels a texture layer may refine beyond the finest elevation level.
-     * Such nodes draw their elevation ancestor's mesh clipped to the node (one extra draw of
-     * that mesh per node), so each level multiplies vertex work by 4 where it applies.
+     * Such nodes draw the cells of their elevation ancestor's mesh under the node, clipped to
+     * the node (TileMesh cells, MeshCells.h): about one ancestor mesh's work in all, not one
+     * per descendant.
      */
     int textureLevelsBeyondGeometry = 1;
 
