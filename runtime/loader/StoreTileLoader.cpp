@@ -77,9 +77,9 @@ TilePayload StoreTileLoader::load(const LoadRequest& request) {
             }
             p.diagnostics.append(r.diagnostics);
             p.stats = r->stats;
-            Result<terrain::TileMesh> mesh =
-                terrain::buildTileMesh(*r, mReader->info().grid, mOptions, mMesher,
-                                       std::max(0, int(request.key.frame)));
+            // The elevation key's frame is the mesh's tolerance tier (TerrainOptions).
+            Result<terrain::TileMesh> mesh = terrain::buildTileMesh(
+                *r, mReader->info().grid, mOptions, mMesher, std::max(0, int(request.key.frame)));
             if (!mesh.ok()) {
                 p.status = TilePayload::Status::Failed;
                 for (Diagnostic d : mesh.diagnostics.items()) {

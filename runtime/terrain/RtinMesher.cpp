@@ -262,8 +262,7 @@ void RtinMesher::sortByCell(TileMesh& out, std::uint32_t begin, std::uint32_t en
     mSortScratch.assign(out.indices.begin() + begin, out.indices.begin() + end);
     for (std::size_t g = 0; g < groups; ++g) {
         std::uint32_t& dst = cursor[mGroupCell[g]];
-        for (std::size_t i = 0; i < group; ++i)
-            out.indices[dst + i] = mSortScratch[g * group + i];
+        for (std::size_t i = 0; i < group; ++i) out.indices[dst + i] = mSortScratch[g * group + i];
         dst += std::uint32_t(group);
     }
 }

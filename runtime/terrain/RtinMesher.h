@@ -120,7 +120,7 @@ private:
     }
 
     const float* mPosts = nullptr;
-    int mSize = 0;  // posts per side (2^k + 1)
+    int mSize = 0;       // posts per side (2^k + 1)
     int mCellPosts = 1;  // triangles are split until they fit one cell of this many intervals
     double mTolerance = 0.0;
     bool mHasNodata = false;

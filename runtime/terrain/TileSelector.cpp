@@ -189,8 +189,8 @@ void TileSelector::emit(const TileId& id, const NodeInfo& info, double distance,
     const bool coarser = found && (gk.id != wantedGeom || gk.frame > wantedTier);
     if (!found || gk != wantedKey) {
         const double shownPx = found ? levelError(gk.id, gk.frame) * ppm : 0.0;
-        request(wantedKey, found ? (coarser ? shownPx : 0.0)
-                                 : kNothingDrawnPriority + info.error * ppm);
+        request(wantedKey,
+                found ? (coarser ? shownPx : 0.0) : kNothingDrawnPriority + info.error * ppm);
     }
     if (!found) {
         ++mResult.counters.tilesMissing;

@@ -283,8 +283,7 @@ TEST(TileSelector, EveryDrawnTileMeetsTheBoundAndItsParentDoesNot) {
                 EXPECT_LE(e * cam.pixelsPerMetreAt(t.distance), tau + 1e-9);
             }
             if (tier < o.maxToleranceTier()) {
-                EXPECT_GT((l + o.tinTolerance(l, tier + 1)) * cam.pixelsPerMetreAt(t.distance),
-                          tau)
+                EXPECT_GT((l + o.tinTolerance(l, tier + 1)) * cam.pixelsPerMetreAt(t.distance), tau)
                     << "a coarser tier would do for " << t.id.level << "/" << t.id.column;
             }
             EXPECT_NEAR(t.geometricErrorPx, e * cam.pixelsPerMetreAt(t.distance), 1e-9);
