@@ -3,10 +3,13 @@
 // triangles and tiles per frame, tiles drawn from ancestors, and the baselines measured in the
 // same run: the llvmpipe fill bound (a full-screen quad doing the same texture fetches per
 // pixel) and, unless --no-fullres, the same flight with the full-resolution mesh (tauGeom 0).
+// Also terrain draw calls per frame, the tile cache's resident bytes and the peak RSS before
+// the full-resolution baseline runs (that baseline dominates the process's final peak).
 //
 // usage: bench-frame SCENARIO [--sizes 1280x720,1920x1080] [--frames N] [--no-fullres]
 //                             [--warmup-timeout S]
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -31,13 +34,23 @@ namespace {
 
 struct Flight {
     std::vector<double> frameMs;
-    std::vector<double> triangles, tiles, fromAncestor, missing;
+    std::vector<double> triangles, tiles, fromAncestor, missing, drawCalls, residentMb;
 };
 
 double peakRssMb() {
     rusage u{};
     getrusage(RUSAGE_SELF, &u);
     return double(u.ru_maxrss) / 1024.0;
+}
+
+/** Resident set now (MB), from /proc/self/statm; 0 where unavailable. */
+double currentRssMb() {
+    FILE* f = std::fopen("/proc/self/statm", "r");
+    if (!f) return 0.0;
+    unsigned long long size = 0, resident = 0;
+    const int n = std::fscanf(f, "%llu %llu", &size, &resident);
+    std::fclose(f);
+    return n == 2 ? double(resident) * double(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0) : 0.0;
 }
 
 /** Orbit the overview viewpoint while time advances: deterministic and repeatable. */
@@ -70,6 +83,8 @@ Flight fly(app::Session& s, int width, int height, int frames, bool settleFirst)
         f.tiles.push_back(double(rec.tilesDrawn));
         f.fromAncestor.push_back(double(rec.tilesFromAncestor));
         f.missing.push_back(double(rec.sequenceTilesMissing));
+        f.drawCalls.push_back(double(s.terrain().frameInfo().drawCalls));
+        f.residentMb.push_back(double(rec.residentBytes) / (1024.0 * 1024.0));
     }
     return f;
 }
@@ -129,6 +144,7 @@ int main(int argc, char** argv) {
             return 1;
         }
         const std::size_t layers = (*session)->scenario().layers.size();
+        const double rssOpen = currentRssMb();
         Flight lod = fly(**session, w, h, frames, true);
         nlohmann::json r;
         r["size"] = std::to_string(w) + "x" + std::to_string(h);
@@ -137,6 +153,16 @@ int main(int argc, char** argv) {
                          {"p99", app::percentile(lod.frameMs, 99)}};
         r["fps"] = 1000.0 / std::max(1e-9, app::percentile(lod.frameMs, 50));
         r["triangles_mean"] = mean(lod.triangles);
+        r["triangles_p50"] = app::percentile(lod.triangles, 50);
+        r["draw_calls_mean"] = mean(lod.drawCalls);
+        r["tile_cache_resident_mb_max"] =
+            lod.residentMb.empty() ? 0.0
+                                   : *std::max_element(lod.residentMb.begin(), lod.residentMb.end());
+        // Peak RSS of the process so far: the LOD flight (and earlier sizes), before the
+        // full-resolution baseline below inflates it.
+        r["peak_rss_mb_before_fullres"] = peakRssMb();
+        r["rss_mb_session_open"] = rssOpen;
+        r["rss_mb_after_flight"] = currentRssMb();
         r["tiles_mean"] = mean(lod.tiles);
         r["frames_with_ancestor_tiles"] =
             std::count_if(lod.fromAncestor.begin(), lod.fromAncestor.end(), [](double x) { return x > 0; });
@@ -171,6 +197,7 @@ int main(int argc, char** argv) {
                 Flight fr = fly(**full, w, h, std::min(frames, 20), true);
                 r["fullres_frame_ms_p50"] = app::percentile(fr.frameMs, 50);
                 r["fullres_triangles_mean"] = mean(fr.triangles);
+                r["fullres_draw_calls_mean"] = mean(fr.drawCalls);
                 r["triangle_ratio_lod_to_fullres"] = mean(lod.triangles) / std::max(1.0, mean(fr.triangles));
                 r["speedup_vs_fullres"] = app::percentile(fr.frameMs, 50) /
                                           std::max(1e-9, app::percentile(lod.frameMs, 50));

@@ -2,6 +2,7 @@
 
 #include "runtime/anim/ArrivalThresholds.h"
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -98,8 +99,9 @@ TilePayload StoreTileLoader::load(const LoadRequest& request) {
             }
             p.diagnostics.append(r.diagnostics);
             p.stats = r->stats;
-            Result<terrain::TileMesh> mesh =
-                terrain::buildTileMesh(*r, mReader->info().grid, mOptions, mMesher);
+            // The elevation key's frame is the mesh's tolerance tier (TerrainOptions).
+            Result<terrain::TileMesh> mesh = terrain::buildTileMesh(
+                *r, mReader->info().grid, mOptions, mMesher, std::max(0, int(request.key.frame)));
             if (!mesh.ok()) {
                 p.status = TilePayload::Status::Failed;
                 for (Diagnostic d : mesh.diagnostics.items()) {

@@ -181,7 +181,33 @@ void TerrainRenderer::draw(const GpuMesh& mesh, const glm::dvec3& origin, bool f
     glUniform3f(mLocOrigin, float(rel.x), float(rel.y), float(origin.z));
     mesh.draw();
     ++mCounters.tilesDrawn;
+    ++mCounters.drawCalls;
     mCounters.triangles += mesh.triangleCount();
+    if (fromAncestor) ++mCounters.tilesFromAncestor;
+}
+
+void TerrainRenderer::setTileUniforms(const glm::dvec3& origin, const glm::dvec2& clipMin,
+                                      const glm::dvec2& clipMax) {
+    const glm::dvec2 o(mSceneOrigin);
+    glUniform4f(mLocClip, float(clipMin.x - o.x), float(clipMin.y - o.y), float(clipMax.x - o.x),
+                float(clipMax.y - o.y));
+    const glm::mat4 mvp(mProjection * mCamera->view(origin));
+    glUniformMatrix4fv(mLocMvp, 1, GL_FALSE, glm::value_ptr(mvp));
+    const glm::dvec3 rel = origin - mSceneOrigin;
+    glUniform3f(mLocOrigin, float(rel.x), float(rel.y), float(origin.z));
+}
+
+void TerrainRenderer::drawRanges(const GpuMesh& mesh, const glm::dvec3& origin, bool fromAncestor,
+                                 const glm::dvec2& clipMin, const glm::dvec2& clipMax,
+                                 const IndexRun* ranges, std::size_t count) {
+    if (!mCamera || !mesh.valid()) return;
+    setTileUniforms(origin, clipMin, clipMax);
+    for (std::size_t i = 0; i < count; ++i) {
+        mesh.drawRange(ranges[i].first, ranges[i].count);
+        ++mCounters.drawCalls;
+        mCounters.triangles += ranges[i].count / 3;
+    }
+    ++mCounters.tilesDrawn;
     if (fromAncestor) ++mCounters.tilesFromAncestor;
 }
 

@@ -32,6 +32,7 @@ struct DrawCounters {
     std::uint32_t tilesDrawn = 0;
     std::uint64_t triangles = 0;
     std::uint32_t tilesFromAncestor = 0;
+    std::uint32_t drawCalls = 0;  ///< glDrawElements calls of the terrain pass
     void clear() { *this = {}; }
 };
 
@@ -94,12 +95,22 @@ public:
     /** @brief Same, keeping only fragments inside the world rectangle [clipMin, clipMax]. */
     void draw(const GpuMesh& mesh, const glm::dvec3& origin, bool fromAncestor,
               const glm::dvec2& clipMin, const glm::dvec2& clipMax);
+    /**
+     * @brief Same, drawing only the index runs `ranges[0 .. count)` (e.g. the cells of an
+     * ancestor's mesh under a descendant node), so vertex and fragment work stay proportional
+     * to the part that is kept. Counts as one tile.
+     */
+    void drawRanges(const GpuMesh& mesh, const glm::dvec3& origin, bool fromAncestor,
+                    const glm::dvec2& clipMin, const glm::dvec2& clipMax,
+                    const IndexRun* ranges, std::size_t count);
     void end();
 
     DrawCounters& counters() noexcept { return mCounters; }
     const CompositeProgramDesc& desc() const noexcept { return mDesc; }
 
 private:
+    void setTileUniforms(const glm::dvec3& origin, const glm::dvec2& clipMin,
+                         const glm::dvec2& clipMax);
     struct LayerLoc {
         GLint tex = -1, texB = -1, rect = -1, param = -1;
         GLint texT = -1, rectT = -1;  ///< arrival sequences only

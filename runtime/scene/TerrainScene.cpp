@@ -9,6 +9,7 @@
 #include "runtime/core/Log.h"
 #include "runtime/loader/StoreTileLoader.h"
 #include "runtime/render/Textures.h"
+#include "runtime/terrain/MeshCells.h"
 
 namespace kiosk::scene {
 namespace {
@@ -613,7 +614,18 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
             // the overlap is resolved by the depth test.
             const auto& m = mGrid.levels[std::size_t(std::min(t.id.level, mGrid.maxLevel()))];
             const glm::dvec2 margin(0.25 * m.pixelXSize, 0.25 * m.pixelYSize);
-            r.draw(g.mesh, p->mesh->origin, t.fromAncestor, t.clipMin - margin, t.clipMax + margin);
+            // Only the mesh cells under the node: an ancestor drawn for four (or sixteen)
+            // descendants then costs about one whole draw, not four (docs/terrain.md §3).
+            if (terrain::meshRangesInRect(*p->mesh, t.clipMin - margin, t.clipMax + margin,
+                                          mCellRanges)) {
+                mRuns.clear();
+                for (const auto& c : mCellRanges) mRuns.push_back({c.first, c.count});
+                r.drawRanges(g.mesh, p->mesh->origin, t.fromAncestor, t.clipMin - margin,
+                             t.clipMax + margin, mRuns.data(), mRuns.size());
+            } else {
+                r.draw(g.mesh, p->mesh->origin, t.fromAncestor, t.clipMin - margin,
+                       t.clipMax + margin);
+            }
         } else {
             r.draw(g.mesh, p->mesh->origin, t.fromAncestor);
         }
@@ -621,6 +633,7 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
     r.end();
     mFrame.tilesDrawn = r.counters().tilesDrawn;
     mFrame.triangles = r.counters().triangles;
+    mFrame.drawCalls = r.counters().drawCalls;
 }
 
 math::Viewpoint TerrainScene::overviewViewpoint() const {

@@ -19,6 +19,7 @@
 #include "runtime/render/GpuMesh.h"
 #include "runtime/render/TerrainRenderer.h"
 #include "runtime/scene/Playback.h"
+#include "runtime/terrain/MeshCells.h"
 #include "runtime/terrain/TilePayload.h"
 #include "runtime/terrain/TileSelector.h"
 #include "runtime/terrain/TileStatsTable.h"
@@ -41,6 +42,7 @@ struct SceneFrameInfo {
     std::uint32_t tilesDrawn = 0;
     std::uint64_t triangles = 0;
     std::uint32_t tilesFromAncestor = 0;
+    std::uint32_t drawCalls = 0;  ///< terrain glDrawElements calls
     std::uint32_t sequenceTilesMissing = 0;  ///< wanted sequence tiles not resident
     std::uint64_t residentBytes = 0;         ///< CPU + GPU bytes held by the tile cache
     std::uint32_t requests = 0;
@@ -196,6 +198,8 @@ private:
     int mMaxTextureUnits = 16;
     std::vector<terrain::TileRequest> mPrefetch;
     std::vector<std::uint32_t> mDrawOrder;
+    std::vector<terrain::IndexRange> mCellRanges;  ///< per clipped draw, reused
+    std::vector<render::IndexRun> mRuns;
     const terrain::SelectionResult* mSelection = nullptr;
     math::Aabb mBounds;
     glm::dvec3 mSceneOrigin{0.0};

@@ -1,5 +1,7 @@
 #include "runtime/terrain/RtinMesher.h"
 
+#include "runtime/terrain/MeshCells.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -28,7 +30,7 @@ inline long long edgeFn(int ax, int ay, int bx, int by, int px, int py) {
 }  // namespace
 
 MeshParams MeshParams::forTile(const io::TileGrid& grid, const TileId& id,
-                               const TerrainOptions& options, double tileError) {
+                               const TerrainOptions& options, double tileError, int tier) {
     MeshParams p;
     if (id.level < 0 || id.level > grid.maxLevel()) return p;
     double x0, y0, x1, y1;
@@ -38,8 +40,8 @@ MeshParams MeshParams::forTile(const io::TileGrid& grid, const TileId& id,
     p.originY = y1;
     p.pixelX = m.pixelXSize;
     p.pixelY = m.pixelYSize;
-    p.tolerance = options.tinTolerance(tileError);
-    p.skirtDepth = options.skirtDepth(grid, id.level, tileError);
+    p.tolerance = options.tinTolerance(tileError, tier);
+    p.skirtDepth = options.skirtDepth(grid, id.level, tileError, tier);
     return p;
 }
 
@@ -208,13 +210,61 @@ void RtinMesher::emitTriangle(int ax, int ay, int bx, int by, int cx, int cy) {
 
 void RtinMesher::extract(int ax, int ay, int bx, int by, int cx, int cy) {
     const int mx = (ax + bx) / 2, my = (ay + by) / 2;
+    // Triangles larger than a cell are always split (uniformly over the tile, so the mesh stays
+    // conforming): each triangle then belongs to one cell and a quadrant is an index range.
+    const int spanX = std::max({ax, bx, cx}) - std::min({ax, bx, cx});
+    const int spanY = std::max({ay, by, cy}) - std::min({ay, by, cy});
+    const bool largerThanCell = spanX > mCellPosts || spanY > mCellPosts;
     if (std::abs(ax - cx) + std::abs(ay - cy) > 1 &&
-        mErrors[std::size_t(my) * std::size_t(mSize) + std::size_t(mx)] > mTolerance) {
+        (largerThanCell ||
+         mErrors[std::size_t(my) * std::size_t(mSize) + std::size_t(mx)] > mTolerance)) {
         extract(ax, ay, cx, cy, mx, my);
         extract(cx, cy, bx, by, mx, my);
         return;
     }
     emitTriangle(ax, ay, bx, by, cx, cy);
+}
+
+void RtinMesher::sortByCell(TileMesh& out, std::uint32_t begin, std::uint32_t end,
+                            std::size_t group,
+                            std::array<std::uint32_t, TileMesh::kMaxCells + 1>& starts) {
+    // Counting sort of index groups (a triangle, or a skirt quad) by the Morton code of the cell
+    // holding their first edge's midpoint; stable, so each cell keeps the extraction order.
+    const int cells = out.cellCount();
+    const std::size_t groups = (end - begin) / group;
+    mGroupCell.resize(groups);
+    std::array<std::uint32_t, TileMesh::kMaxCells + 1> count{};
+    const std::uint32_t last = std::uint32_t(out.cellsPerSide() - 1);
+    for (std::size_t g = 0; g < groups; ++g) {
+        // A triangle's centroid lies inside its cell; a skirt quad {u, vs, v, u, us, vs} belongs
+        // to the cell of its top edge (u, v), whose midpoint may sit on the east/south border.
+        const std::uint32_t* idx = &out.indices[begin + g * group];
+        const std::uint32_t corners[3] = {idx[0], idx[group == 3 ? 1 : 2], idx[2]};
+        const int used = group == 3 ? 3 : 2;
+        std::uint32_t sx = 0, sy = 0;
+        for (int c = 0; c < used; ++c) {
+            const std::uint32_t p = mSurfacePost[corners[c]];
+            sx += p % std::uint32_t(mSize);
+            sy += p / std::uint32_t(mSize);
+        }
+        const std::uint32_t span = std::uint32_t(used) * std::uint32_t(out.cellPosts);
+        const std::uint32_t cx = std::min(sx / span, last), cy = std::min(sy / span, last);
+        const std::uint16_t code = std::uint16_t(cellMortonCode(cx, cy));
+        mGroupCell[g] = code;
+        ++count[code];
+    }
+    starts[0] = begin;
+    for (int c = 0; c < TileMesh::kMaxCells; ++c)
+        starts[std::size_t(c) + 1] =
+            starts[std::size_t(c)] + (c < cells ? count[std::size_t(c)] * std::uint32_t(group) : 0);
+    std::array<std::uint32_t, TileMesh::kMaxCells> cursor{};
+    for (int c = 0; c < TileMesh::kMaxCells; ++c) cursor[std::size_t(c)] = starts[std::size_t(c)];
+    mSortScratch.assign(out.indices.begin() + begin, out.indices.begin() + end);
+    for (std::size_t g = 0; g < groups; ++g) {
+        std::uint32_t& dst = cursor[mGroupCell[g]];
+        for (std::size_t i = 0; i < group; ++i) out.indices[dst + i] = mSortScratch[g * group + i];
+        dst += std::uint32_t(group);
+    }
 }
 
 Diagnostics RtinMesher::build(const io::RasterTile& tile, const MeshParams& params, TileMesh& out) {
@@ -251,11 +301,16 @@ Diagnostics RtinMesher::build(const io::RasterTile& tile, const MeshParams& para
     out.indices.clear();
     out.tolerance = params.tolerance;
     out.skirtDepth = params.skirtDepth;
+    out.postSpacing = glm::dvec2(params.pixelX, params.pixelY);
+    out.postIntervals = n;
 
     // Two root triangles share the NW-SE diagonal as hypotenuse.
     // Bottom-up, one depth of the hierarchy at a time (deepest non-trivial depth is 2k - 1).
     int k = 0;
     while ((1 << k) < n) ++k;
+    out.cellLevels = std::min(TileMesh::kMaxCellLevels, k);
+    out.cellPosts = n >> out.cellLevels;
+    mCellPosts = out.cellPosts;
     for (int depth = 2 * k - 1; depth >= 0; --depth) {
         computeErrors(0, 0, n, n, 0, n, 0, depth);
         computeErrors(n, n, 0, 0, n, 0, 0, depth);
@@ -265,6 +320,7 @@ Diagnostics RtinMesher::build(const io::RasterTile& tile, const MeshParams& para
 
     out.surfaceVertexCount = std::uint32_t(out.vertexCount());
     out.surfaceIndexCount = std::uint32_t(out.indices.size());
+    sortByCell(out, 0, out.surfaceIndexCount, 3, out.surfaceCellStart);
     out.minZ = out.maxZ = 0.0f;
     for (std::size_t v = 0; v < out.vertexCount(); ++v) {
         const float z = out.vertices[v * TileMesh::kFloatsPerVertex + 2];
@@ -293,6 +349,8 @@ Diagnostics RtinMesher::build(const io::RasterTile& tile, const MeshParams& para
             }
         }
     }
+    sortByCell(out, out.surfaceIndexCount, std::uint32_t(out.indices.size()), 6,
+               out.skirtCellStart);
     mOut = nullptr;
     mPosts = nullptr;
     return diags;
@@ -306,7 +364,7 @@ Result<TileMesh> RtinMesher::build(const io::RasterTile& tile, const MeshParams&
 }
 
 Result<TileMesh> buildTileMesh(const io::RasterTile& tile, const io::TileGrid& grid,
-                               const TerrainOptions& options, RtinMesher& mesher) {
+                               const TerrainOptions& options, RtinMesher& mesher, int tier) {
     if (tile.id.level < 0 || tile.id.level > grid.maxLevel()) {
         Diagnostics d;
         d.error("TERRAIN_TILE_LEVEL", "", tileName(tile.id),
@@ -315,7 +373,7 @@ Result<TileMesh> buildTileMesh(const io::RasterTile& tile, const io::TileGrid& g
         return Result<TileMesh>(std::move(d));
     }
     const MeshParams params =
-        MeshParams::forTile(grid, tile.id, options, double(tile.stats.geometricError));
+        MeshParams::forTile(grid, tile.id, options, double(tile.stats.geometricError), tier);
     return mesher.build(tile, params);
 }
 

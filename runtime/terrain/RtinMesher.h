@@ -6,6 +6,7 @@
 #include "runtime/math/Glm.h"
 #include "runtime/terrain/TerrainOptions.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -25,10 +26,21 @@ namespace kiosk::terrain {
  * Surface triangles come first (`surfaceIndexCount` indices, counter-clockwise seen from above),
  * then skirt triangles (counter-clockwise seen from outside the tile; draw skirts without face
  * culling or keep culling off for the whole tile). Skirt vertices follow the surface vertices.
+ *
+ * Cells: the tile is divided into `cellsPerSide()`^2 square cells of `cellPosts` post
+ * intervals (8x8 for tiles of 64 or more post intervals). Every triangle lies inside one cell
+ * (the mesher splits at least that far) and both the surface and the skirt triangles are sorted
+ * by the cells' Morton (Z-order) code, so any quadtree descendant of the tile down to
+ * `cellLevels` levels is one contiguous index range of each section (see MeshCells.h).
+ * Surface cell c is indices [surfaceCellStart[c], surfaceCellStart[c+1]); skirt cell c is
+ * [skirtCellStart[c], skirtCellStart[c+1]) (skirt ranges start at surfaceIndexCount).
  */
 struct TileMesh {
     static constexpr int kFloatsPerVertex = 6;
     static constexpr std::size_t kVertexStride = kFloatsPerVertex * sizeof(float);
+    /** @brief Quadtree levels the cell ordering resolves (8x8 cells). */
+    static constexpr int kMaxCellLevels = 3;
+    static constexpr int kMaxCells = 1 << (2 * kMaxCellLevels);
 
     TileId id;
     glm::dvec3 origin{0.0};
@@ -40,6 +52,15 @@ struct TileMesh {
     float maxZ = 0.0f;
     double tolerance = 0.0;  ///< TIN tolerance the mesh was built with (metres)
     double skirtDepth = 0.0;
+    glm::dvec2 postSpacing{0.0};  ///< metres between posts (x east, y south)
+    int postIntervals = 0;        ///< posts per side - 1
+    int cellLevels = 0;           ///< cells per side = 2^cellLevels (<= kMaxCellLevels)
+    int cellPosts = 0;            ///< post intervals per cell side
+    std::array<std::uint32_t, kMaxCells + 1> surfaceCellStart{};
+    std::array<std::uint32_t, kMaxCells + 1> skirtCellStart{};
+
+    int cellsPerSide() const noexcept { return 1 << cellLevels; }
+    int cellCount() const noexcept { return 1 << (2 * cellLevels); }
 
     std::size_t vertexCount() const noexcept { return vertices.size() / kFloatsPerVertex; }
     std::size_t triangleCount() const noexcept { return indices.size() / 3; }
@@ -64,7 +85,7 @@ struct MeshParams {
 
     /** @brief Params for tile `id` of `grid` using `options` and the tile's stored error. */
     static MeshParams forTile(const io::TileGrid& grid, const TileId& id,
-                              const TerrainOptions& options, double tileError);
+                              const TerrainOptions& options, double tileError, int tier = 0);
 };
 
 /**
@@ -89,6 +110,8 @@ private:
     void computeErrors(int ax, int ay, int bx, int by, int cx, int cy, int depth, int target);
     float triangleError(int ax, int ay, int bx, int by, int cx, int cy) const;
     void extract(int ax, int ay, int bx, int by, int cx, int cy);
+    void sortByCell(TileMesh& out, std::uint32_t begin, std::uint32_t end, std::size_t group,
+                    std::array<std::uint32_t, TileMesh::kMaxCells + 1>& starts);
     void emitTriangle(int ax, int ay, int bx, int by, int cx, int cy);
     std::uint32_t vertexFor(int x, int y);
     std::uint32_t skirtVertexFor(std::uint32_t top);
@@ -97,7 +120,8 @@ private:
     }
 
     const float* mPosts = nullptr;
-    int mSize = 0;  // posts per side (2^k + 1)
+    int mSize = 0;       // posts per side (2^k + 1)
+    int mCellPosts = 1;  // triangles are split until they fit one cell of this many intervals
     double mTolerance = 0.0;
     bool mHasNodata = false;
     MeshParams mParams;
@@ -106,13 +130,16 @@ private:
     std::vector<std::int32_t> mVertexIndex;   // per post: vertex index or -1
     std::vector<std::int32_t> mSkirtIndex;    // per surface vertex: skirt vertex or -1
     std::vector<std::uint32_t> mSurfacePost;  // per surface vertex: post index
+    std::vector<std::uint32_t> mSortScratch;  // indices while sorting by cell
+    std::vector<std::uint16_t> mGroupCell;    // per triangle/quad: Morton code of its cell
 };
 
 /**
  * @brief Convenience for the loader: mesh of an elevation tile with the tolerance and skirt
- * depth that `options` prescribe for its level (errors name the tile).
+ * depth that `options` prescribe for its level and tolerance tier (the elevation key's frame;
+ * errors name the tile).
  */
 Result<TileMesh> buildTileMesh(const io::RasterTile& tile, const io::TileGrid& grid,
-                               const TerrainOptions& options, RtinMesher& mesher);
+                               const TerrainOptions& options, RtinMesher& mesher, int tier = 0);
 
 }  // namespace kiosk::terrain

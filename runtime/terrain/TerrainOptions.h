@@ -3,6 +3,7 @@
 #include "runtime/io/StoreTypes.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace kiosk::terrain {
 
@@ -40,10 +41,20 @@ struct TerrainOptions {
 
     /**
      * @brief How many levels a texture layer may refine beyond the finest elevation level.
-     * Such nodes draw their elevation ancestor's mesh clipped to the node (one extra draw of
-     * that mesh per node), so each level multiplies vertex work by 4 where it applies.
+     * Such nodes draw the cells of their elevation ancestor's mesh under the node, clipped to
+     * the node (TileMesh cells, MeshCells.h): about one ancestor mesh's work in all, not one
+     * per descendant.
      */
     int textureLevelsBeyondGeometry = 1;
+
+    /**
+     * @brief Coarser meshes of the same tile for tiles seen from afar ("tolerance tiers"): tier
+     * k > 0 is built with tinTolerance(e) * 2^k. The selector picks, for the node whose mesh
+     * meets tauGeom, the coarsest tier that still does ((e + t_k) ppm(d) <= tauGeom), so a tile
+     * of the finest level (e = 0, t = tinToleranceMin) seen from 20 km is not meshed to 0.1 m.
+     * Tier k is requested as TileKey::frame = k of the elevation layer. 0 disables the tiers.
+     */
+    int toleranceTiers = 10;
 
     /** @brief Options for the fidelity reference: finest level everywhere, zero tolerance. */
     static TerrainOptions fullResolutionReference() {
@@ -70,13 +81,23 @@ struct TerrainOptions {
                         std::max(0.0, tinToleranceMin));
     }
 
+    /** @brief TIN tolerance (metres) of tolerance tier `tier` (0: tinTolerance(tileError)). */
+    double tinTolerance(double tileError, int tier) const {
+        const double base = tinTolerance(tileError);
+        if (tier <= 0 || fullResolution) return base;
+        return std::ldexp(base, std::min(tier, 30));
+    }
+
+    /** @brief Highest tolerance tier the selector may ask for (0 at full resolution). */
+    int maxToleranceTier() const { return fullResolution ? 0 : std::clamp(toleranceTiers, 0, 30); }
+
     /**
      * @brief Skirt depth (metres) for a tile of `level` whose stored error is `tileError`:
      * the vertical gap to any neighbour is at most (own error + tolerance) + (neighbour's), so
      * the skirt covers both, plus one post spacing so rasterisation never shows a seam.
      */
-    double skirtDepth(const io::TileGrid& grid, int level, double tileError) const {
-        const double own = std::max(0.0, tileError) + tinTolerance(tileError);
+    double skirtDepth(const io::TileGrid& grid, int level, double tileError, int tier = 0) const {
+        const double own = std::max(0.0, tileError) + tinTolerance(tileError, tier);
         return own + std::max(own, neighbourErrorBound) + postSpacing(grid, level);
     }
 };

@@ -89,7 +89,7 @@ math::Aabb TileSelector::nodeBounds(const TileId& id, double minZ, double maxZ) 
     return b;
 }
 
-double TileSelector::levelError(const TileId& geometryTile) const {
+double TileSelector::levelError(const TileId& geometryTile, int tier) const {
     io::TileStats s;
     double e = 0.0;
     TileId t = geometryTile;
@@ -103,7 +103,35 @@ double TileSelector::levelError(const TileId& geometryTile) const {
         if (t.level == 0) break;
         t = t.parent();
     }
-    return e + mSetup.options.tinTolerance(e);
+    return e + mSetup.options.tinTolerance(e, tier);
+}
+
+bool TileSelector::findGeometry(TileKey& key, TileHandle& handle) {
+    const int want = std::max(0, key.frame);
+    const int maxTier = mSetup.options.maxToleranceTier();
+    auto tryTier = [&](const TileId& id, int tier) {
+        const TileHandle h = mResidency->drawable(TileKey{key.layer, tier, id});
+        if (!h.valid()) return false;
+        key = TileKey{key.layer, tier, id};
+        handle = h;
+        return true;
+    };
+    // Same tile first: the wanted tier, then finer tiers (they meet the bound too), then coarser
+    // ones (a stand-in like an ancestor while the wanted tier loads).
+    if (tryTier(key.id, want)) return true;
+    for (int tier = want - 1; tier >= 0; --tier)
+        if (tryTier(key.id, tier)) return true;
+    for (int tier = want + 1; tier <= maxTier; ++tier)
+        if (tryTier(key.id, tier)) return true;
+    // Then the nearest ancestor with any tier, finest first.
+    for (TileId id = key.id; id.level > 0;) {
+        id = id.parent();
+        for (int tier = 0; tier <= maxTier; ++tier)
+            if (tryTier(id, tier)) return true;
+    }
+    // Nothing at all: the plain walk makes sure the branch's root is requested.
+    TileKey plain{key.layer, 0, key.id};
+    return findDrawable(plain, handle) ? (key = plain, true) : false;
 }
 
 void TileSelector::request(const TileKey& key, double priority) {
@@ -151,13 +179,18 @@ void TileSelector::emit(const TileId& id, const NodeInfo& info, double distance,
         info.geometryLevel >= 0 ? std::min(info.geometryLevel, mSetup.geometryMaxLevel)
                                 : mSetup.geometryMaxLevel;
     const TileId wantedGeom = ancestorAt(id, geometryLevel);
-    TileKey gk{mSetup.geometryLayer, 0, wantedGeom};
+    const int wantedTier = info.geometryLevel >= 0 ? info.geometryTier : 0;
+    const TileKey wantedKey{mSetup.geometryLayer, wantedTier, wantedGeom};
+    TileKey gk = wantedKey;
     TileHandle gh;
-    const bool found = findDrawable(gk, gh);
-    if (!found || gk.id != wantedGeom) {
-        const double shownPx = found ? levelError(gk.id) * ppm : 0.0;
-        request(TileKey{mSetup.geometryLayer, 0, wantedGeom},
-                found ? shownPx : kNothingDrawnPriority + info.error * ppm);
+    const bool found = findGeometry(gk, gh);
+    // A coarser tier than wanted breaks the bound like an ancestor does; a finer one only costs
+    // triangles, so replacing it is requested at the lowest priority.
+    const bool coarser = found && (gk.id != wantedGeom || gk.frame > wantedTier);
+    if (!found || gk != wantedKey) {
+        const double shownPx = found ? levelError(gk.id, gk.frame) * ppm : 0.0;
+        request(wantedKey,
+                found ? (coarser ? shownPx : 0.0) : kNothingDrawnPriority + info.error * ppm);
     }
     if (!found) {
         ++mResult.counters.tilesMissing;
@@ -165,9 +198,9 @@ void TileSelector::emit(const TileId& id, const NodeInfo& info, double distance,
     }
     tile.geometry = gk;
     tile.handle = gh;
-    tile.fromAncestor = gk.id != wantedGeom;
+    tile.fromAncestor = coarser;
     tile.clipped = gk.id != id;
-    tile.geometricErrorPx = levelError(gk.id) * ppm;
+    tile.geometricErrorPx = levelError(gk.id, gk.frame) * ppm;
     {
         double x0, y0, x1, y1;
         mSetup.grid.tileBounds(id, x0, y0, x1, y1);
@@ -245,8 +278,17 @@ void TileSelector::visit(const TileId& id, const NodeInfo& parent) {
     }
     // Only a node whose error is known may stand in for its descendants' geometry.
     if (!refine && info.geometryLevel < 0 && (info.known || id.level == 0) &&
-        id.level <= mSetup.geometryMaxLevel)
+        id.level <= mSetup.geometryMaxLevel) {
         info.geometryLevel = id.level;
+        // The coarsest mesh of this tile that still meets tauGeom here (tiers double the TIN
+        // tolerance); nodes below it (texture detail) share this mesh.
+        info.geometryTier = 0;
+        for (int tier = opt.maxToleranceTier(); tier > 0; --tier)
+            if ((info.error + opt.tinTolerance(info.error, tier)) * ppm <= opt.tauGeom) {
+                info.geometryTier = tier;
+                break;
+            }
+    }
     if (!refine) {
         const double texelPx = TerrainOptions::postSpacing(mSetup.grid, id.level) * ppm;
         for (const TextureLayerSpec& t : mSetup.textures)

@@ -112,6 +112,8 @@ struct SelectionResult {
  * A node N at distance d (eye to its bounding box) is refined while
  *   gamma(N) = (e(N) + tinTolerance(e(N))) * pixelsPerMetreAt(d) > tauGeom,  e = stored error
  * or, for any texture layer with a finer level, while postSpacing(level) * ppm(d) > tauTex.
+ * The node whose mesh meets tauGeom also picks its mesh's tolerance tier: the coarsest tier k
+ * with (e + tinTolerance(e, k)) * ppm(d) <= tauGeom (key frame k of the elevation layer).
  * Each layer's texture level is then chosen independently: the coarsest ancestor level whose
  * texel still projects to <= tauTex px. Nodes outside the frustum are culled. If the wanted
  * payload is not drawable, the nearest drawable ancestor is drawn (clipped) and a request is
@@ -148,13 +150,18 @@ private:
         /** Level of the ancestor whose mesh already meets tauGeom (-1: none yet). Nodes below it
          *  are refined for texture detail only and draw that ancestor's mesh, clipped. */
         int geometryLevel = -1;
+        /** Tolerance tier of that ancestor's mesh (TerrainOptions::toleranceTiers). */
+        int geometryTier = 0;
     };
+    /** Mesh of `wanted` (frame = tier): that tier, a finer one, a coarser one, else the
+     *  nearest drawable ancestor's tier-0 mesh. */
+    bool findGeometry(TileKey& key, TileHandle& handle);
     void visit(const TileId& id, const NodeInfo& parent);
     void emit(const TileId& id, const NodeInfo& info, double distance, double ppm);
     bool findDrawable(TileKey& key, TileHandle& handle);
     void request(const TileKey& key, double priority);
     bool inMatrix(const TileId& id) const;
-    double levelError(const TileId& geometryTile) const;
+    double levelError(const TileId& geometryTile, int tier = 0) const;
 
     SelectorSetup mSetup;
     int mMaxDepth = 0;

@@ -159,6 +159,28 @@ TEST(StoreTileLoader, ElevationBecomesMeshWithLevelTolerance) {
     loader.threadStopping();
 }
 
+// The elevation key's frame is the tolerance tier: tier k doubles the tolerance k times and
+// deepens the skirts to match; coarser tiers never have more triangles.
+TEST(StoreTileLoader, ElevationFrameSelectsToleranceTier) {
+    FakeStore store;
+    terrain::TerrainOptions opt;
+    StoreTileLoader loader = makeLoader(store, opt);
+    loader.threadStarted();
+    const TileId id{1, 1, 0};
+    std::size_t previous = SIZE_MAX;
+    for (int tier : {0, 1, 3}) {
+        const TilePayload p = loader.load(req(0, id, tier));
+        ASSERT_EQ(p.status, TilePayload::Status::Ready) << p.diagnostics.format();
+        ASSERT_TRUE(p.mesh.has_value());
+        EXPECT_DOUBLE_EQ(p.mesh->tolerance, 0.5 * 2.0 * double(1 << tier)) << "tier " << tier;
+        EXPECT_DOUBLE_EQ(p.mesh->skirtDepth,
+                         opt.skirtDepth(store.info().grid, 1, p.stats->geometricError, tier));
+        EXPECT_LE(p.mesh->surfaceTriangleCount(), previous) << "tier " << tier;
+        previous = p.mesh->surfaceTriangleCount();
+    }
+    loader.threadStopping();
+}
+
 TEST(StoreTileLoader, ImageryAndSequenceFrames) {
     FakeStore store;
     StoreTileLoader loader = makeLoader(store);

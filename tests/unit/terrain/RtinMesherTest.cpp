@@ -141,7 +141,9 @@ TEST(RtinMesher, TriangleCountDropsWithTolerance) {
     EXPECT_LT(previous, 2000u);  // 64 m on 60 m ridges: a handful of triangles
 }
 
-TEST(RtinMesher, FlatAndPlanarTilesGiveTwoTriangles) {
+TEST(RtinMesher, FlatAndPlanarTilesGiveTwoTrianglesPerCell) {
+    // Triangles never span cells (8x8 per tile, so that a quadrant is an index range): a flat
+    // tile is one triangle pair per cell, with one skirt quad per border cell edge.
     RtinMesher mesher;
     for (auto f : std::initializer_list<std::function<float(int, int)>>{
              [](int, int) { return 12.5f; },
@@ -149,11 +151,18 @@ TEST(RtinMesher, FlatAndPlanarTilesGiveTwoTriangles) {
         const io::RasterTile tile = makeTile(257, f);
         auto mesh = mesher.build(tile, params(0.0, 5.0));
         ASSERT_TRUE(mesh.ok());
-        EXPECT_EQ(mesh->surfaceTriangleCount(), 2u);
-        EXPECT_EQ(mesh->surfaceVertexCount, 4u);
-        EXPECT_EQ(mesh->skirtTriangleCount(), 8u);  // one quad per border
-        EXPECT_EQ(mesh->vertexCount(), 8u);
+        EXPECT_EQ(mesh->cellLevels, 3);
+        EXPECT_EQ(mesh->cellPosts, 32);
+        EXPECT_EQ(mesh->surfaceTriangleCount(), 2u * 64u);
+        EXPECT_EQ(mesh->surfaceVertexCount, 9u * 9u);
+        EXPECT_EQ(mesh->skirtTriangleCount(), 2u * 4u * 8u);  // one quad per border cell edge
+        EXPECT_EQ(mesh->vertexCount(), 81u + 32u);
     }
+    // A tile smaller than 8 post intervals has as many cells as it has intervals.
+    auto small = mesher.build(makeTile(3, [](int, int) { return 1.0f; }), params(0.0, 5.0));
+    ASSERT_TRUE(small.ok());
+    EXPECT_EQ(small->cellLevels, 1);
+    EXPECT_EQ(small->surfaceTriangleCount(), 8u);
 }
 
 TEST(RtinMesher, MeshIsConformingAndCounterClockwise) {

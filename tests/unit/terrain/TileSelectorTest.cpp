@@ -7,6 +7,7 @@
 #include <new>
 #include <set>
 #include <string>
+#include <tuple>
 
 // Counts heap allocations so the test can prove select() is allocation-free once warm.
 // (GCC 12 flags malloc/free inside replaced operators as mismatched: a false positive.)
@@ -148,6 +149,98 @@ int levelAt(const SelectionResult& r, double x, double y) {
     return -1;
 }
 
+// Tolerance tiers: far finest-level tiles get coarser meshes (key frame = tier), close ones
+// tier 0; a finer resident tier stands in without breaking the bound, a coarser one is a
+// fallback that is flagged and requested with the error it shows.
+TEST(TileSelector, ToleranceTiersFollowDistanceAndFallBack) {
+    TerrainOptions opt;
+    Fixture f(kGeomMax + 1, {}, opt);
+    const auto cam = camera({2000, 2000, 25}, 0, -30, 300);
+    const SelectionResult& r = f.select(cam);
+    int finest = 0, tiered = 0, closeTierZero = 0;
+    for (const DrawTile& t : r.tiles) {
+        if (t.id.level != kGeomMax) continue;
+        ++finest;
+        tiered += t.geometry.frame > 0 ? 1 : 0;
+        const double t0 = opt.tinTolerance(0.0);  // 0.1 m
+        if (t0 * cam.pixelsPerMetreAt(t.distance) * 2 > opt.tauGeom) {
+            EXPECT_EQ(t.geometry.frame, 0) << "close tile";
+            ++closeTierZero;
+        }
+        EXPECT_LE(opt.tinTolerance(0.0, t.geometry.frame) * cam.pixelsPerMetreAt(t.distance),
+                  opt.tauGeom + 1e-9);
+    }
+    ASSERT_GT(finest, 4);
+    EXPECT_GT(tiered, 0) << "far finest tiles keep the 0.1 m mesh";
+    EXPECT_GT(closeTierZero, 0);
+
+    // Without tiers every mesh is tier 0.
+    TerrainOptions none = opt;
+    none.toleranceTiers = 0;
+    Fixture g(kGeomMax + 1, {}, none);
+    for (const DrawTile& t : g.select(cam).tiles) EXPECT_EQ(t.geometry.frame, 0);
+
+    // Residency by exact key (frame included) for the fallbacks.
+    class TierResidency final : public TileResidency {
+    public:
+        std::set<std::tuple<int, int, int, int>> keys;
+        TileHandle drawable(const TileKey& k) override {
+            return keys.count({k.frame, k.id.level, k.id.column, k.id.row})
+                       ? TileHandle{std::uint32_t(k.id.packed() % 1000003u) + 1u}
+                       : TileHandle{};
+        }
+    } res;
+    // Pick one tiered tile; make only tier 0 of it resident (plus everything coarser).
+    const DrawTile* pick = nullptr;
+    for (const DrawTile& t : r.tiles)
+        if (t.id.level == kGeomMax && t.geometry.frame >= 2) pick = &t;
+    ASSERT_NE(pick, nullptr);
+    const TileId id = pick->id;
+    const int want = pick->geometry.frame;
+    for (int l = 0; l < kGeomMax; ++l)
+        for (int row = 0; row < (1 << l); ++row)
+            for (int col = 0; col < (1 << l); ++col)
+                for (int tier = 0; tier <= opt.maxToleranceTier(); ++tier)
+                    res.keys.insert({tier, l, col, row});
+    auto findTile = [&](const SelectionResult& sel) -> const DrawTile* {
+        for (const DrawTile& t : sel.tiles)
+            if (t.id == id) return &t;
+        return nullptr;
+    };
+    auto requestFor = [&](const SelectionResult& sel) -> const TileRequest* {
+        for (const TileRequest& q : sel.requests)
+            if (q.key == TileKey{0, want, id}) return &q;
+        return nullptr;
+    };
+    res.keys.insert({0, id.level, id.column, id.row});
+    const SelectionResult& finer = f.selector.select(cam, f.stats, res);
+    const DrawTile* d = findTile(finer);
+    ASSERT_NE(d, nullptr);
+    EXPECT_EQ(d->geometry, (TileKey{0, 0, id}));
+    EXPECT_FALSE(d->fromAncestor);
+    ASSERT_NE(requestFor(finer), nullptr);
+    EXPECT_EQ(requestFor(finer)->priority, 0.0);  // only saves triangles
+
+    res.keys.erase({0, id.level, id.column, id.row});
+    res.keys.insert({want + 1, id.level, id.column, id.row});
+    const SelectionResult& coarser = f.selector.select(cam, f.stats, res);
+    d = findTile(coarser);
+    ASSERT_NE(d, nullptr);
+    EXPECT_EQ(d->geometry, (TileKey{0, want + 1, id}));
+    EXPECT_TRUE(d->fromAncestor);
+    ASSERT_NE(requestFor(coarser), nullptr);
+    EXPECT_GT(requestFor(coarser)->priority, opt.tauGeom);
+
+    // Only an ancestor's tiered mesh: drawn clipped, never a hole.
+    res.keys.erase({want + 1, id.level, id.column, id.row});
+    const SelectionResult& up = f.selector.select(cam, f.stats, res);
+    d = findTile(up);
+    ASSERT_NE(d, nullptr);
+    EXPECT_EQ(d->geometry.id, id.parent());
+    EXPECT_TRUE(d->clipped);
+    EXPECT_EQ(up.counters.tilesMissing, 0u);
+}
+
 TEST(TileSelector, RefinementDecreasesMonotonicallyWithDistance) {
     Fixture f;
     int previousLevel = 99;
@@ -182,9 +275,16 @@ TEST(TileSelector, EveryDrawnTileMeetsTheBoundAndItsParentDoesNot) {
         ASSERT_GT(r.tiles.size(), 4u);
         const TerrainOptions& o = f.selector.setup().options;
         for (const DrawTile& t : r.tiles) {
-            const double e = errorAt(t.id.level) + o.tinTolerance(errorAt(t.id.level));
-            if (t.id.level < kGeomMax) {
+            // The drawn mesh is the coarsest tolerance tier that meets the bound.
+            const int tier = t.geometry.frame;
+            const double l = errorAt(t.id.level);
+            const double e = l + o.tinTolerance(l, tier);
+            if (t.id.level < kGeomMax || tier > 0) {
                 EXPECT_LE(e * cam.pixelsPerMetreAt(t.distance), tau + 1e-9);
+            }
+            if (tier < o.maxToleranceTier()) {
+                EXPECT_GT((l + o.tinTolerance(l, tier + 1)) * cam.pixelsPerMetreAt(t.distance), tau)
+                    << "a coarser tier would do for " << t.id.level << "/" << t.id.column;
             }
             EXPECT_NEAR(t.geometricErrorPx, e * cam.pixelsPerMetreAt(t.distance), 1e-9);
             if (t.id.level == 0) continue;
