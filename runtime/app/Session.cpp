@@ -198,23 +198,31 @@ void Session::drawOverlays(double time, int width, int height) {
     const auto& sc = *mScenario;
     const float line = float(o.font().lineHeight());
     o.begin(width, height);
-    if (!sc.title.empty() || !sc.caption.empty()) {
-        const float w = std::max(o.measure(sc.title), o.measure(sc.caption)) + 24.0f;
-        const float h = (sc.caption.empty() ? 1.0f : 2.0f) * line + 16.0f;
-        o.rect(12, 12, w, h, kPanel);
-        o.text(24, 12 + 8 + float(o.font().ascent()), sc.title, kText);
-        if (!sc.caption.empty()) o.text(24, 12 + 8 + line + float(o.font().ascent()), sc.caption, kDim);
-    }
+    // The time label is laid out first: when it and the title do not fit side by side (narrow
+    // previews, long titles), the title moves below it rather than being overdrawn.
+    std::string label;
+    float labelW = 0.0f;
     if (sc.overlays.timeLabel.enabled && mEnd > mStart) {
         char buf[128];
         anim::formatTimeLabel(buf, sizeof buf, time, mStart, sc.overlays.timeLabel.format, mZone);
-        std::string label = buf;
+        label = buf;
         if (sc.overlays.timeLabel.showOffset && label.find("T+") == std::string::npos &&
             label.find("T-") == std::string::npos)
             label += "  (" + anim::formatElapsed(time - mStart) + ")";
-        const float w = o.measure(label) + 24.0f;
-        o.rect(float(width) - w - 12, 12, w, line + 16, kPanel);
-        o.text(float(width) - w, 12 + 8 + float(o.font().ascent()), label, kText);
+        labelW = o.measure(label) + 24.0f;
+    }
+    if (!sc.title.empty() || !sc.caption.empty()) {
+        const float w = std::max(o.measure(sc.title), o.measure(sc.caption)) + 24.0f;
+        const float h = (sc.caption.empty() ? 1.0f : 2.0f) * line + 16.0f;
+        const bool stacked = labelW > 0.0f && 12 + w + 12 + labelW + 12 > float(width);
+        const float y = stacked ? 12 + line + 16 + 8 : 12;
+        o.rect(12, y, w, h, kPanel);
+        o.text(24, y + 8 + float(o.font().ascent()), sc.title, kText);
+        if (!sc.caption.empty()) o.text(24, y + 8 + line + float(o.font().ascent()), sc.caption, kDim);
+    }
+    if (labelW > 0.0f) {
+        o.rect(float(width) - labelW - 12, 12, labelW, line + 16, kPanel);
+        o.text(float(width) - labelW, 12 + 8 + float(o.font().ascent()), label, kText);
         if (sc.overlays.progress.enabled) {
             const float frac = float(std::clamp((time - mStart) / (mEnd - mStart), 0.0, 1.0));
             o.rect(12, float(height) - 10, float(width) - 24, 4, glm::vec4(1, 1, 1, 0.3f));
