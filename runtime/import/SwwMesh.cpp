@@ -98,7 +98,9 @@ void SwwMesh::bounds(double& minX, double& minY, double& maxX, double& maxY) con
     maxY = *std::max_element(mY.begin(), mY.end());
 }
 
-Result<std::vector<float>> SwwMesh::depth(int step) const {
+Result<std::vector<float>> SwwMesh::readPoints(const std::string& var, bool perStep,
+                                               int step) const {
+    // Reopened per call: the mesh keeps no handle, so it can be shared by encoder threads.
     Diagnostics d;
     NcFile nc;
     if (nc_open(mPath.c_str(), NC_NOWRITE, &nc.id) != NC_NOERR) {
@@ -107,61 +109,38 @@ Result<std::vector<float>> SwwMesh::depth(int step) const {
         return d;
     }
     const std::size_t np = mX.size();
-    std::vector<float> stage(np), elev(np);
-    int sId, eId;
-    nc_inq_varid(nc.id, "stage", &sId);
-    nc_inq_varid(nc.id, mElevationVar.c_str(), &eId);
-    const std::size_t start[2] = {std::size_t(step), 0}, count[2] = {1, np};
-    int rc = nc_get_vara_float(nc.id, sId, start, count, stage.data());
-    if (rc == NC_NOERR) {
-        if (mElevationPerStep)
-            rc = nc_get_vara_float(nc.id, eId, start, count, elev.data());
-        else
-            rc = nc_get_var_float(nc.id, eId, elev.data());
-    }
+    std::vector<float> values(np);
+    int id = -1;
+    int rc = nc_inq_varid(nc.id, var.c_str(), &id);
+    const std::size_t start[2] = {std::size_t(std::max(step, 0)), 0}, count[2] = {1, np};
+    if (rc == NC_NOERR)
+        rc = perStep ? nc_get_vara_float(nc.id, id, start, count, values.data())
+                     : nc_get_var_float(nc.id, id, values.data());
     if (rc != NC_NOERR) {
-        d.error("IMPORT_SWW", mPath, "step " + std::to_string(step),
-                std::string("cannot read stage/elevation: ") + nc_strerror(rc));
+        d.error("IMPORT_SWW", mPath, var + " step " + std::to_string(step),
+                "cannot read " + var + ": " + nc_strerror(rc));
         return d;
     }
-    for (std::size_t i = 0; i < np; ++i) {
-        stage[i] -= elev[i];
-        if (!std::isfinite(stage[i])) {
-            d.error("IMPORT_NAN", mPath, "step " + std::to_string(step),
-                    "stage or elevation is NaN at point " + std::to_string(i));
+    for (std::size_t i = 0; i < np; ++i)
+        if (!std::isfinite(values[i])) {
+            d.error("IMPORT_NAN", mPath, var + " step " + std::to_string(step),
+                    var + " is NaN at point " + std::to_string(i));
             return d;
         }
-    }
+    return values;
+}
+
+Result<std::vector<float>> SwwMesh::depth(int step) const {
+    auto stage = readPoints("stage", true, step);
+    if (!stage) return stage;
+    auto elev = elevation(step);
+    if (!elev) return elev;
+    for (std::size_t i = 0; i < stage->size(); ++i) (*stage)[i] -= (*elev)[i];
     return stage;
 }
 
 Result<std::vector<float>> SwwMesh::elevation(int step) const {
-    Diagnostics d;
-    NcFile nc;
-    if (nc_open(mPath.c_str(), NC_NOWRITE, &nc.id) != NC_NOERR) {
-        nc.id = -1;
-        d.error("IMPORT_UNREADABLE", mPath, "", "cannot reopen SWW");
-        return d;
-    }
-    const std::size_t np = mX.size();
-    std::vector<float> elev(np);
-    int eId;
-    nc_inq_varid(nc.id, mElevationVar.c_str(), &eId);
-    const std::size_t start[2] = {std::size_t(std::max(step, 0)), 0}, count[2] = {1, np};
-    const int rc = mElevationPerStep ? nc_get_vara_float(nc.id, eId, start, count, elev.data())
-                                     : nc_get_var_float(nc.id, eId, elev.data());
-    if (rc != NC_NOERR) {
-        d.error("IMPORT_SWW", mPath, mElevationVar,
-                std::string("cannot read elevation: ") + nc_strerror(rc));
-        return d;
-    }
-    for (std::size_t i = 0; i < np; ++i)
-        if (!std::isfinite(elev[i])) {
-            d.error("IMPORT_NAN", mPath, mElevationVar,
-                    "elevation is NaN at point " + std::to_string(i));
-            return d;
-        }
-    return elev;
+    return readPoints(mElevationVar, mElevationPerStep, step);
 }
 
 ScalarRowSource SwwMesh::rasterize(const io::TileGrid& grid, const GridWindow& window,

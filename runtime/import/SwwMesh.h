@@ -54,6 +54,9 @@ public:
                               std::vector<float> depth, double wetThreshold) const;
 
 private:
+    /** @brief One point variable (one step of it when `perStep`), NaN-free. */
+    Result<std::vector<float>> readPoints(const std::string& var, bool perStep, int step) const;
+
     std::string mPath;
     std::vector<double> mX, mY;
     std::vector<int> mTri;

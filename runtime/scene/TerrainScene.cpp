@@ -393,14 +393,7 @@ void TerrainScene::releaseEvicted() {
 }
 
 bool TerrainScene::sequenceFrameComplete(const StackLayer& layer, bool useA) const {
-    const int spec = useA ? layer.specA : layer.specB;
-    if (!mSelection || spec < 0) return false;
-    for (const auto& t : mSelection->tiles) {
-        if (int(t.textureCount) <= spec) return false;
-        const auto& a = mSelection->textures[t.firstTexture + std::uint32_t(spec)];
-        if (!a.handle.valid() || a.fromAncestor) return false;
-    }
-    return true;
+    return specComplete(useA ? layer.specA : layer.specB);
 }
 
 void TerrainScene::update(const math::Camera& camera, double time) {
