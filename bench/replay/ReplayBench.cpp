@@ -45,16 +45,8 @@ double peakRssMb() {
 }
 
 anim::ScenarioClock makeClock(const app::Session& s, double rateOverride) {
-    anim::ClockSettings cs;
-    cs.start = s.startTime();
-    cs.end = s.endTime();
-    if (const auto& c = s.scenario().clock) {
-        cs.rate = c->rate;
-        cs.range = c->range == config::RangeBehaviour::Loop    ? anim::RangeMode::Loop
-                   : c->range == config::RangeBehaviour::Clamp ? anim::RangeMode::Clamp
-                                                               : anim::RangeMode::Unbounded;
-        cs.waitForData = c->waitForData;
-    }
+    anim::ClockSettings cs = s.clockSettings();
+    cs.startPaused = false;  // a benchmark always plays
     if (rateOverride > 0) cs.rate = rateOverride;
     auto clock = anim::ScenarioClock::create(cs);
     return clock ? *clock.value : anim::ScenarioClock();

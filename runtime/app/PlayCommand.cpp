@@ -50,18 +50,7 @@ std::vector<std::filesystem::file_time_type> stamps(const std::vector<std::files
 }
 
 anim::ScenarioClock makeClock(const Session& s) {
-    anim::ClockSettings cs;
-    cs.start = s.startTime();
-    cs.end = s.endTime();
-    if (const auto& c = s.scenario().clock) {
-        cs.rate = c->rate;
-        cs.range = c->range == config::RangeBehaviour::Loop    ? anim::RangeMode::Loop
-                   : c->range == config::RangeBehaviour::Clamp ? anim::RangeMode::Clamp
-                                                               : anim::RangeMode::Unbounded;
-        cs.waitForData = c->waitForData;
-        cs.startPaused = c->paused;
-    }
-    auto clock = anim::ScenarioClock::create(cs);
+    auto clock = anim::ScenarioClock::create(s.clockSettings());
     return clock ? *clock.value : anim::ScenarioClock();
 }
 

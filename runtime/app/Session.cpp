@@ -181,6 +181,21 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     return r;
 }
 
+anim::ClockSettings Session::clockSettings() const {
+    anim::ClockSettings cs;
+    cs.start = mStart;
+    cs.end = mEnd;
+    if (const auto& c = mScenario->clock) {
+        cs.rate = c->rate;
+        cs.range = c->range == config::RangeBehaviour::Loop    ? anim::RangeMode::Loop
+                   : c->range == config::RangeBehaviour::Clamp ? anim::RangeMode::Clamp
+                                                               : anim::RangeMode::Unbounded;
+        cs.waitForData = c->waitForData;
+        cs.startPaused = c->paused;
+    }
+    return cs;
+}
+
 void Session::drawOverlays(double time, int width, int height) {
     // Text scales with the output: legible on a wall at 4K, not covering a 320-pixel preview.
     const int fontPx = std::clamp(height / 40, 10, 40);

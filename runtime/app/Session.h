@@ -8,6 +8,7 @@
 
 #include "config/Scenario.h"
 #include "runtime/anim/CameraPath.h"
+#include "runtime/anim/ScenarioClock.h"
 #include "runtime/anim/TimeLabel.h"
 #include "runtime/app/FrameStats.h"
 #include "runtime/core/Result.h"
@@ -37,6 +38,8 @@ public:
     /** @brief Scenario start/end in epoch seconds (from the clock, else the sequences). */
     double startTime() const noexcept { return mStart; }
     double endTime() const noexcept { return mEnd; }
+    /** @brief The scenario's clock (rate, range, wait, paused) over [startTime, endTime]. */
+    anim::ClockSettings clockSettings() const;
 
     /**
      * @brief The camera at data time `time`: `viewpoint` if named, else the scenario's camera
