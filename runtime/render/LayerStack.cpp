@@ -44,6 +44,7 @@ float lensMask(vec4 lens, vec2 rotation, float softEdge, vec2 p) {
 int textureUnitsNeeded(const CompositeProgramDesc& desc) {
     int units = 1 + desc.lutCount;  // elevation LUT + transfer-function LUTs
     for (const auto& l : desc.layers) units += l.kind == LayerKind::Sequence ? 2 : 1;
+    if (desc.mappingCapacity > 0) units += 2;  // mapping data + LUT arrays
     return units;
 }
 
@@ -76,6 +77,11 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
         auto text = gl::ShaderLibrary::source(lib);
         if (!text) return text.diagnostics;
         s << *text << "\n";
+    }
+    if (desc.mappingCapacity > 0) {
+        auto text = gl::ShaderLibrary::source("common/mappings.glsl");
+        if (!text) return text.diagnostics;
+        s << "#define KIOSK_MAX_MAPPINGS " << desc.mappingCapacity << "\n" << *text << "\n";
     }
     for (int i = 0; i < n; ++i) {
         s << "uniform sampler2D uLayer" << i << ";\n";
@@ -190,6 +196,8 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
         }
         s << "    }\n";
     }
+    // Mappings draw on the composited stack and are lit with it (docs/projective-mappings.md).
+    if (desc.mappingCapacity > 0) s << "    C = applyMappings(C, vec3(vScenePos, vElevation));\n";
     s << "    C *= mix(1.0, lambert(vNormal, uLightDir, uAmbient), uGeometryLighting);\n";
     for (std::size_t j = 0; j < desc.lenses.size(); ++j) {
         if (desc.lenses[j].kind != LensKind::Highlight) continue;

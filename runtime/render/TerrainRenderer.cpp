@@ -129,6 +129,11 @@ void TerrainRenderer::begin(const math::Camera& camera, const glm::dvec3& sceneO
         glUniform2f(mLensLocs[j][2], float(std::cos(a)), float(std::sin(a)));
     }
     for (int i = 0; i < int(mDesc.layers.size()); ++i) setLayer(i, {});
+    if (mDesc.mappingCapacity > 0 && mMappings) {
+        // The last two units (LayerStack's textureUnitsNeeded): data and LUT arrays.
+        const int units = textureUnitsNeeded(mDesc);
+        mMappings->bind(mProgram.id(), units - 2, units - 1);
+    }
 }
 
 void TerrainRenderer::setLayer(int index, const LayerBinding& b) {

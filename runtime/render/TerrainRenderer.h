@@ -9,6 +9,7 @@
 #include "runtime/math/Camera.h"
 #include "runtime/render/GpuMesh.h"
 #include "runtime/render/LayerStack.h"
+#include "runtime/render/MappingSet.h"
 
 namespace kiosk::render {
 
@@ -79,6 +80,8 @@ public:
     void setElevationLut(int size, const std::uint8_t* rgba, float domainMin, float domainMax);
     void setLut(int index, const LutBinding& lut);
     void setLens(int index, const LensBinding& lens);
+    /** @brief Projective mappings bound by begin() (desc.mappingCapacity > 0); not owned. */
+    void setMappings(const MappingSet* mappings) { mMappings = mappings; }
 
     /** @brief Bind program and frame state for `camera`. */
     void begin(const math::Camera& camera, const glm::dvec3& sceneOrigin, const TerrainStyle& style);
@@ -125,6 +128,7 @@ private:
           mLocElevDomain = -1, mLocElevWeight = -1, mLocBase = -1, mLocLight = -1,
           mLocAmbient = -1, mLocGeomLight = -1, mLocClip = -1;
     DrawCounters mCounters;
+    const MappingSet* mMappings = nullptr;
 };
 
 }  // namespace kiosk::render

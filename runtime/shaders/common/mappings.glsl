@@ -1,0 +1,87 @@
+// Projective mappings (Trapp & Döllner, "Dynamic Mapping of Raster-Data for 3D Geovirtual
+// Environments"; docs/projective-mappings.md). Spliced into the generated terrain shader
+// by LayerStack when the stack has mappings; KIOSK_MAX_MAPPINGS is defined before this text.
+//
+// One std140 block, uploaded only when a mapping changes (render/MappingSet):
+//   uMapHeader  x: active count, y: 1 when the context colour matrix applies
+//   uMapContext applied to (rgb, 1) of the terrain outside every focus mapping
+//   uMap[9 i + 0..2]  rows S, T, W of T_i = M_T · M_P · M_O (scene metres -> texture)
+//   uMap[9 i + 3..6]  colour matrix M_C columns, applied to (rgb, 1); alpha untouched
+//   uMap[9 i + 7]     (data layer, LUT layer or -1, opacity, focus 0/1)
+//   uMap[9 i + 8]     (source factor, destination factor, 0, 0)
+layout(std140) uniform Mappings {
+    vec4 uMapHeader;
+    mat4 uMapContext;
+    vec4 uMap[KIOSK_MAX_MAPPINGS * 9];
+};
+uniform highp sampler2DArray uMapData;  // RGBA16F: images, or (LUT coord x valid, valid, 0, 0)
+uniform highp sampler2DArray uMapLut;   // RGBA8 rows: [below, LUT..., above]
+
+// Blend factors in the order of config::BlendFactor; destination alpha is 1 (opaque terrain).
+vec3 mapFactor(int f, vec4 src, vec3 dst) {
+    if (f == 0) return vec3(0.0);
+    if (f == 1) return vec3(1.0);
+    if (f == 2) return src.rgb;
+    if (f == 3) return vec3(1.0) - src.rgb;
+    if (f == 4) return dst;
+    if (f == 5) return vec3(1.0) - dst;
+    if (f == 6) return vec3(src.a);
+    if (f == 7) return vec3(1.0 - src.a);
+    if (f == 8) return vec3(1.0);
+    return vec3(0.0);
+}
+
+// The texture coordinate of scene point p for mapping i; outside [0,1]^2 fails testAABB2D.
+vec2 mapCoord(int i, vec3 p) {
+    vec4 h = vec4(p, 1.0);
+    float w = dot(uMap[9 * i + 2], h);
+    return vec2(dot(uMap[9 * i], h), dot(uMap[9 * i + 1], h)) / w;
+}
+
+bool testAABB2D(vec2 s) {
+    return all(greaterThanEqual(s, vec2(0.0))) && all(lessThanEqual(s, vec2(1.0)));
+}
+
+// C_S of the paper: the data layer's colour (image, or scalar through its LUT), colour matrix
+// applied, alpha scaled by the mapping's opacity. The image's top row lies at t = 1.
+vec4 mapSource(int i, vec2 s) {
+    vec4 param = uMap[9 * i + 7];
+    vec4 d = texture(uMapData, vec3(s.x, 1.0 - s.y, param.x));
+    vec4 c = d;
+    if (param.y >= 0.0) {
+        float u = d.r / max(d.g, 1e-6);
+        c = texture(uMapLut, vec3(u, 0.5, param.y));
+        c.a *= step(0.5, d.g);
+    }
+    mat4 m = mat4(uMap[9 * i + 3], uMap[9 * i + 4], uMap[9 * i + 5], uMap[9 * i + 6]);
+    c.rgb = clamp((m * vec4(c.rgb, 1.0)).rgb, 0.0, 1.0);
+    c.a = clamp(c.a * param.z, 0.0, 1.0);
+    return c;
+}
+
+// Figure 2 of the paper: every active mapping in its explicit order (later over earlier),
+// skipping those whose coordinates fall outside [0,1]^2.
+vec3 applyMappings(vec3 C, vec3 p) {
+    int n = int(uMapHeader.x + 0.5);
+    if (uMapHeader.y > 0.5) {
+        // Focus + context: the terrain outside every focus mapping takes the context matrix.
+        float focus = 0.0;
+        for (int i = 0; i < n; ++i) {
+            if (uMap[9 * i + 7].w < 0.5) continue;
+            vec2 s = mapCoord(i, p);
+            if (testAABB2D(s)) focus = max(focus, mapSource(i, s).a);
+        }
+        vec3 dimmed = clamp((uMapContext * vec4(C, 1.0)).rgb, 0.0, 1.0);
+        C = mix(dimmed, C, focus);
+    }
+    for (int i = 0; i < n; ++i) {
+        vec2 s = mapCoord(i, p);
+        if (!testAABB2D(s)) continue;
+        vec4 src = mapSource(i, s);
+        vec4 f = uMap[9 * i + 8];
+        C = clamp(src.rgb * mapFactor(int(f.x + 0.5), src, C) +
+                      C * mapFactor(int(f.y + 0.5), src, C),
+                  0.0, 1.0);
+    }
+    return C;
+}
