@@ -31,6 +31,9 @@ std::string FrameStats::toJson() const {
         frames["sequence_tiles_missing"].push_back(f.sequenceTilesMissing);
         frames["resident_bytes"].push_back(f.residentBytes);
         frames["data_time"].push_back(f.dataTime);
+        frames["mappings_active"].push_back(f.mappingsActive);
+        frames["mappings_culled_frustum"].push_back(f.mappingsCulledFrustum);
+        frames["mappings_culled_size"].push_back(f.mappingsCulledSize);
     }
     j["summary"] = {{"frames", mFrames.size()},
                     {"frame_ms", {{"median", percentile(ms, 50)},

@@ -17,6 +17,9 @@ struct FrameRecord {
     std::uint32_t sequenceTilesMissing = 0;
     std::uint64_t residentBytes = 0;
     double dataTime = 0;  ///< scenario time shown (epoch seconds)
+    std::uint32_t mappingsActive = 0;         ///< projective mappings evaluated
+    std::uint32_t mappingsCulledFrustum = 0;  ///< outside the view frustum
+    std::uint32_t mappingsCulledSize = 0;     ///< screen-space size below the threshold
 };
 
 /** @brief Percentile by linear interpolation between closest ranks (p in [0,100]). */

@@ -167,6 +167,9 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     r.sequenceTilesMissing = f.sequenceTilesMissing;
     r.residentBytes = f.residentBytes;
     r.dataTime = time;
+    r.mappingsActive = f.mappingsActive;
+    r.mappingsCulledFrustum = f.mappingsCulledFrustum;
+    r.mappingsCulledSize = f.mappingsCulledSize;
     return r;
 }
 

@@ -91,11 +91,15 @@ MappingState evaluate(const config::ProjectiveMapping& m, double time, double cl
     return s;
 }
 
-glm::dvec2 TextureTransform::apply(const glm::dvec3& p) const {
+glm::dvec2 TextureTransform::rect(const glm::dvec3& p) const {
     const glm::dvec4 h(p, 1.0);
-    const double w = glm::dot(rowW, h);
-    const double iw = std::abs(w) > 1e-300 ? 1.0 / w : 0.0;
-    return {glm::dot(rowS, h) * iw, glm::dot(rowT, h) * iw};
+    return {glm::dot(rowS, h), glm::dot(rowT, h)};
+}
+
+glm::dvec2 TextureTransform::apply(const glm::dvec3& p) const {
+    const glm::dvec3 q = textureMatrix * glm::dvec3(rect(p), 1.0);
+    const double iw = std::abs(q.z) > 1e-300 ? 1.0 / q.z : 0.0;
+    return {q.x * iw, q.y * iw};
 }
 
 std::optional<TextureTransform> textureTransform(const MappingState& st,
@@ -110,15 +114,10 @@ std::optional<TextureTransform> textureTransform(const MappingState& st,
     // Rows of inv give a and b; s = a + 1/2, t = b + 1/2 (the paper's M_P scale and bias).
     const glm::dvec3 ra(inv[0][0], inv[1][0], inv[2][0]);
     const glm::dvec3 rb(inv[0][1], inv[1][1], inv[2][1]);
-    const glm::dvec4 s0(ra, 0.5 - glm::dot(ra, o));
-    const glm::dvec4 t0(rb, 0.5 - glm::dot(rb, o));
-    const glm::dvec4 w0(0.0, 0.0, 0.0, 1.0);
-    // M_T · (s0, t0, 1): row r of the result is sum_c M_T[r][c] * (row c).
-    const glm::dmat3& m = st.textureMatrix;
     TextureTransform t;
-    t.rowS = m[0][0] * s0 + m[1][0] * t0 + m[2][0] * w0;
-    t.rowT = m[0][1] * s0 + m[1][1] * t0 + m[2][1] * w0;
-    t.rowW = m[0][2] * s0 + m[1][2] * t0 + m[2][2] * w0;
+    t.rowS = glm::dvec4(ra, 0.5 - glm::dot(ra, o));
+    t.rowT = glm::dvec4(rb, 0.5 - glm::dot(rb, o));
+    t.textureMatrix = st.textureMatrix;
     return t;
 }
 

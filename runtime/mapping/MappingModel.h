@@ -37,15 +37,20 @@ glm::dmat4 toGlm(const config::Mat4& m);
 MappingState evaluate(const config::ProjectiveMapping& mapping, double time, double clockStart);
 
 /**
- * @brief T: the homogeneous plane -> texture transform of the paper (§3.1) for points given
- * relative to `sceneOrigin`: (s, t, w) = rows · (x, y, z, 1), texture coordinate (s/w, t/w).
- * It is M_T · M_P · M_O in one matrix: the point is expressed in the (U, V, N) basis around O
- * (N = U × V, the orthographic direction of projection), shifted so O is (0.5, 0.5), then M_T.
- * Non-orthogonal U and V are handled through the dual basis.
+ * @brief T = M_T · M_P · M_O of the paper (§3.1), kept in two steps for points given relative
+ * to `sceneOrigin`. First the rectangle coordinate r = (rowS · (x, y, z, 1), rowT · (...)):
+ * the point in the (U, V, N) basis around O (N = U × V, the orthographic direction of
+ * projection; non-orthogonal U and V through the dual basis), shifted so O is (0.5, 0.5) and
+ * the rectangle is [0,1]². Then the sampling coordinate M_T · (r, 1), divided by its w.
+ * testAABB2D is applied to r, so the footprint is always the rectangle (the region the CPU
+ * culls) and M_T only moves what is sampled - e.g. one cell of a symbol atlas.
  */
 struct TextureTransform {
-    glm::dvec4 rowS{0.0}, rowT{0.0}, rowW{0.0, 0.0, 0.0, 1.0};
-    /** @brief (s, t) of a point relative to the scene origin. */
+    glm::dvec4 rowS{0.0}, rowT{0.0};
+    glm::dmat3 textureMatrix{1.0};
+    /** @brief Rectangle coordinate r of a point relative to the scene origin. */
+    glm::dvec2 rect(const glm::dvec3& p) const;
+    /** @brief Sampling coordinate M_T · (r, 1) / w. */
     glm::dvec2 apply(const glm::dvec3& p) const;
 };
 
@@ -53,7 +58,7 @@ struct TextureTransform {
 std::optional<TextureTransform> textureTransform(const MappingState& state,
                                                  const glm::dvec3& sceneOrigin);
 
-/** @brief The paper's testAABB2D: both coordinates in [0, 1]. */
+/** @brief The paper's testAABB2D: both coordinates in [0, 1] (applied to rect()). */
 inline bool testAABB2D(const glm::dvec2& s) {
     return s.x >= 0.0 && s.x <= 1.0 && s.y >= 0.0 && s.y <= 1.0;
 }

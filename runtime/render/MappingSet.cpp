@@ -173,10 +173,10 @@ bool MappingSet::setMappings(const std::vector<MappingGpu>& mappings, bool conte
         glm::vec4* p = &block[kHeaderVec4 + i * kVec4PerMapping];
         p[0] = m.rowS;
         p[1] = m.rowT;
-        p[2] = m.rowW;
-        for (int c = 0; c < 4; ++c) p[3 + c] = m.colorMatrix[c];
-        p[7] = glm::vec4(float(m.layer), float(m.lut), m.opacity, m.focus ? 1.0f : 0.0f);
-        p[8] = glm::vec4(float(m.srcFactor), float(m.dstFactor), 0.0f, 0.0f);
+        for (int c = 0; c < 3; ++c) p[2 + c] = glm::vec4(m.textureMatrix[c], 0.0f);
+        for (int c = 0; c < 4; ++c) p[5 + c] = m.colorMatrix[c];
+        p[9] = glm::vec4(float(m.layer), float(m.lut), m.opacity, m.focus ? 1.0f : 0.0f);
+        p[10] = glm::vec4(float(m.srcFactor), float(m.dstFactor), 0.0f, 0.0f);
     }
     glBindBuffer(GL_UNIFORM_BUFFER, mBlock.id());
     glBufferSubData(GL_UNIFORM_BUFFER, 0, GLsizeiptr(block.size() * sizeof(glm::vec4)),

@@ -12,10 +12,11 @@ namespace kiosk::render {
 
 /** @brief One active mapping as the shader sees it (common/mappings.glsl). */
 struct MappingGpu {
-    glm::vec4 rowS{0.0f}, rowT{0.0f}, rowW{0.0f, 0.0f, 0.0f, 1.0f};  ///< T, scene metres
-    glm::mat4 colorMatrix{1.0f};                                     ///< applied to (rgb, 1)
-    int layer = 0;  ///< data layer (index returned by add*)
-    int lut = -1;   ///< LUT row, -1: the layer is an RGBA image
+    glm::vec4 rowS{0.0f}, rowT{0.0f};  ///< scene metres -> rectangle coordinate in [0,1]²
+    glm::mat3 textureMatrix{1.0f};     ///< M_T: rectangle -> sampling coordinate
+    glm::mat4 colorMatrix{1.0f};       ///< applied to (rgb, 1)
+    int layer = 0;                     ///< data layer (index returned by add*)
+    int lut = -1;                      ///< LUT row, -1: the layer is an RGBA image
     float opacity = 1.0f;
     bool focus = false;  ///< inside it the context matrix does not apply
     int srcFactor = 6;   ///< config::BlendFactor order (6 = srcAlpha)
@@ -37,7 +38,7 @@ public:
     static constexpr int kMaxMappings = 64;
     static constexpr int kLutEntries = 1024;
     static constexpr int kLutWidth = kLutEntries + 2;
-    static constexpr int kVec4PerMapping = 9;
+    static constexpr int kVec4PerMapping = 11;
     static constexpr int kHeaderVec4 = 5;
 
     /** @brief Mappings a block of `maxUniformBlockSize` bytes holds (capped at kMaxMappings). */

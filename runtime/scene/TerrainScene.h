@@ -16,6 +16,7 @@
 #include "runtime/math/Camera.h"
 #include "runtime/math/Frustum.h"
 #include "runtime/render/GpuMesh.h"
+#include "runtime/render/MappingSet.h"
 #include "runtime/render/TerrainRenderer.h"
 #include "runtime/terrain/TilePayload.h"
 #include "runtime/terrain/TileSelector.h"
@@ -52,6 +53,11 @@ struct SceneFrameInfo {
     bool sequencePairCommitted = false;
     /** @brief Drawn tiles whose shown frame came from an ancestor or was absent. */
     std::uint32_t shownTilesIncomplete = 0;
+    /** @brief Projective mappings this frame (route pieces count one each). */
+    std::uint32_t mappingsActive = 0;
+    std::uint32_t mappingsCulledFrustum = 0;  ///< rectangle outside the view frustum
+    std::uint32_t mappingsCulledSize = 0;     ///< screen-space size rho below the threshold
+    std::uint32_t mappingsOverCapacity = 0;   ///< active but beyond the uniform block
 };
 
 /** @brief A transfer function ready for the GPU and the legend. */
@@ -130,6 +136,10 @@ private:
 
     Diagnostics buildRenderer();
     void bindLenses();
+    /** @brief Data layers and LUTs of the projective mappings (TerrainSceneMappings.cpp). */
+    Diagnostics setupMappings(const gl::Caps& caps);
+    /** @brief Evaluate, cull and upload the mappings for this frame. */
+    void bindMappings(const math::Camera& camera);
     void noteDrawnFrames(const StackLayer& layer, const terrain::DrawTile& tile);
     void drainCompletions();
     void uploadPayload(terrain::TileHandle handle, terrain::TilePayload& payload);
@@ -170,6 +180,16 @@ private:
     double mTime = 0;
     std::size_t mFirstSequenceLayer = SIZE_MAX;  ///< the layer whose frames frameInfo() reports
     bool mSettled = false;
+    /** @brief One scenario mapping and the array layers it samples. */
+    struct SceneMapping {
+        const config::ProjectiveMapping* config = nullptr;
+        int layer = -1;  ///< data layer (route: edge profile)
+        int lut = -1;    ///< LUT row for scalar data, -1 for images
+    };
+    std::unique_ptr<render::MappingSet> mMappingSet;
+    std::vector<SceneMapping> mMappings;
+    std::vector<render::MappingGpu> mMappingGpu;
+    int mRoutePointLayer = -1;
 };
 
 }  // namespace kiosk::scene

@@ -72,7 +72,7 @@ protected:
         MappingGpu m;
         m.rowS = glm::vec4(t->rowS);
         m.rowT = glm::vec4(t->rowT);
-        m.rowW = glm::vec4(t->rowW);
+        m.textureMatrix = glm::mat3(t->textureMatrix);
         m.layer = layer;
         m.srcFactor = src;
         m.dstFactor = dst;
@@ -209,6 +209,28 @@ TEST_F(MappingGLTest, LaterMappingsDrawOverEarlierAndOutsideIsUntouched) {
     EXPECT_DN_NEAR(at(only, kSize - 4, kSize / 2), dn(kBase));
 }
 
+TEST_F(MappingGLTest, TextureMatrixPicksAnAtlasCellInsideTheRectangleOnly) {
+    // 4x4 atlas of 2x2 cells, top row first: red, green / blue, white.
+    const glm::u8vec4 cells[2][2] = {{{255, 0, 0, 255}, {0, 255, 0, 255}},
+                                     {{0, 0, 255, 255}, {255, 255, 255, 255}}};
+    std::vector<std::uint8_t> px(4 * 4 * 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x)
+            for (int c = 0; c < 4; ++c)
+                px[std::size_t((y * 4 + x) * 4 + c)] = cells[y / 2][x / 2][c];
+    const int atlas = mSet->addImage(4, 4, px.data());
+    mSet->commit();
+    auto m = rect(atlas, 300, 300, 700, 700, kOne, kZero);
+    // Cell (1, 0) - column 1, top row: s' = s/2 + 1/2, t' = t/2 + 1/2 (t runs up the image).
+    m.textureMatrix = glm::transpose(glm::mat3(0.5f, 0, 0.5f, 0, 0.5f, 0.5f, 0, 0, 1));
+    auto img = render({m});
+    EXPECT_DN_NEAR(at(img, kSize / 2, kSize / 2), dn({0, 1, 0}));
+    // East of x = 700 m M_T would still land inside the atlas; the footprint is the rectangle.
+    const int east = kSize - 1;
+    ASSERT_GT(worldAt(east, kSize / 2).x, 710.0);
+    EXPECT_DN_NEAR(at(img, east, kSize / 2), dn(kBase));
+}
+
 TEST_F(MappingGLTest, ContextMatrixDimsOutsideTheFocus) {
     const int white = solidLayer({1, 1, 1, 1});
     mSet->commit();
@@ -266,7 +288,7 @@ TEST_F(MappingGLTest, BlockUploadsOnlyOnChange) {
 
 TEST(MappingSetLimits, CapacityFollowsTheBlockSize) {
     EXPECT_EQ(MappingSet::capacityFor(16384), MappingSet::kMaxMappings);
-    EXPECT_EQ(MappingSet::capacityFor(16 * (5 + 9 * 3)), 3);
+    EXPECT_EQ(MappingSet::capacityFor(16 * (5 + 11 * 3)), 3);
     EXPECT_EQ(MappingSet::capacityFor(64), 0);
 }
 

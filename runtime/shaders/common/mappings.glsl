@@ -5,14 +5,15 @@
 // One std140 block, uploaded only when a mapping changes (render/MappingSet):
 //   uMapHeader  x: active count, y: 1 when the context colour matrix applies
 //   uMapContext applied to (rgb, 1) of the terrain outside every focus mapping
-//   uMap[9 i + 0..2]  rows S, T, W of T_i = M_T · M_P · M_O (scene metres -> texture)
-//   uMap[9 i + 3..6]  colour matrix M_C columns, applied to (rgb, 1); alpha untouched
-//   uMap[9 i + 7]     (data layer, LUT layer or -1, opacity, focus 0/1)
-//   uMap[9 i + 8]     (source factor, destination factor, 0, 0)
+//   uMap[11 i + 0..1]  rows S, T of M_P · M_O: scene metres -> rectangle coordinate r in [0,1]²
+//   uMap[11 i + 2..4]  columns of M_T: r -> sampling coordinate (homogeneous)
+//   uMap[11 i + 5..8]  colour matrix M_C columns, applied to (rgb, 1); alpha untouched
+//   uMap[11 i + 9]     (data layer, LUT layer or -1, opacity, focus 0/1)
+//   uMap[11 i + 10]    (source factor, destination factor, 0, 0)
 layout(std140) uniform Mappings {
     vec4 uMapHeader;
     mat4 uMapContext;
-    vec4 uMap[KIOSK_MAX_MAPPINGS * 9];
+    vec4 uMap[KIOSK_MAX_MAPPINGS * 11];
 };
 uniform highp sampler2DArray uMapData;  // RGBA16F: images, or (LUT coord x valid, valid, 0, 0)
 uniform highp sampler2DArray uMapLut;   // RGBA8 rows: [below, LUT..., above]
@@ -31,21 +32,23 @@ vec3 mapFactor(int f, vec4 src, vec3 dst) {
     return vec3(0.0);
 }
 
-// The texture coordinate of scene point p for mapping i; outside [0,1]^2 fails testAABB2D.
+// The rectangle coordinate of scene point p for mapping i; outside [0,1]^2 fails testAABB2D.
 vec2 mapCoord(int i, vec3 p) {
     vec4 h = vec4(p, 1.0);
-    float w = dot(uMap[9 * i + 2], h);
-    return vec2(dot(uMap[9 * i], h), dot(uMap[9 * i + 1], h)) / w;
+    return vec2(dot(uMap[11 * i], h), dot(uMap[11 * i + 1], h));
 }
 
 bool testAABB2D(vec2 s) {
     return all(greaterThanEqual(s, vec2(0.0))) && all(lessThanEqual(s, vec2(1.0)));
 }
 
-// C_S of the paper: the data layer's colour (image, or scalar through its LUT), colour matrix
-// applied, alpha scaled by the mapping's opacity. The image's top row lies at t = 1.
-vec4 mapSource(int i, vec2 s) {
-    vec4 param = uMap[9 * i + 7];
+// C_S of the paper: the data layer's colour (image, or scalar through its LUT) sampled at
+// M_T · (r, 1), colour matrix applied, alpha scaled by the mapping's opacity. The image's top
+// row lies at t = 1.
+vec4 mapSource(int i, vec2 r) {
+    vec4 param = uMap[11 * i + 9];
+    vec3 q = mat3(uMap[11 * i + 2].xyz, uMap[11 * i + 3].xyz, uMap[11 * i + 4].xyz) * vec3(r, 1.0);
+    vec2 s = q.xy / q.z;
     vec4 d = texture(uMapData, vec3(s.x, 1.0 - s.y, param.x));
     vec4 c = d;
     if (param.y >= 0.0) {
@@ -53,7 +56,7 @@ vec4 mapSource(int i, vec2 s) {
         c = texture(uMapLut, vec3(u, 0.5, param.y));
         c.a *= step(0.5, d.g);
     }
-    mat4 m = mat4(uMap[9 * i + 3], uMap[9 * i + 4], uMap[9 * i + 5], uMap[9 * i + 6]);
+    mat4 m = mat4(uMap[11 * i + 5], uMap[11 * i + 6], uMap[11 * i + 7], uMap[11 * i + 8]);
     c.rgb = clamp((m * vec4(c.rgb, 1.0)).rgb, 0.0, 1.0);
     c.a = clamp(c.a * param.z, 0.0, 1.0);
     return c;
@@ -67,7 +70,7 @@ vec3 applyMappings(vec3 C, vec3 p) {
         // Focus + context: the terrain outside every focus mapping takes the context matrix.
         float focus = 0.0;
         for (int i = 0; i < n; ++i) {
-            if (uMap[9 * i + 7].w < 0.5) continue;
+            if (uMap[11 * i + 9].w < 0.5) continue;
             vec2 s = mapCoord(i, p);
             if (testAABB2D(s)) focus = max(focus, mapSource(i, s).a);
         }
@@ -78,7 +81,7 @@ vec3 applyMappings(vec3 C, vec3 p) {
         vec2 s = mapCoord(i, p);
         if (!testAABB2D(s)) continue;
         vec4 src = mapSource(i, s);
-        vec4 f = uMap[9 * i + 8];
+        vec4 f = uMap[11 * i + 10];
         C = clamp(src.rgb * mapFactor(int(f.x + 0.5), src, C) +
                       C * mapFactor(int(f.y + 0.5), src, C),
                   0.0, 1.0);

@@ -34,9 +34,9 @@ TEST(MappingModelTest, CentreAndCornersMapToUnitSquare) {
     expectNear(t->apply(o + glm::dvec3(50, 0, 0)), {0.75, 0.5});
     // Orthographic along N = U x V: height does not move the texture coordinate.
     expectNear(t->apply(o + glm::dvec3(50, 0, 3000)), {0.75, 0.5});
-    EXPECT_TRUE(testAABB2D(t->apply(o + glm::dvec3(99, 49, 0))));
-    EXPECT_FALSE(testAABB2D(t->apply(o + glm::dvec3(101, 0, 0))));
-    EXPECT_FALSE(testAABB2D(t->apply(o + glm::dvec3(0, -51, 0))));
+    EXPECT_TRUE(testAABB2D(t->rect(o + glm::dvec3(99, 49, 0))));
+    EXPECT_FALSE(testAABB2D(t->rect(o + glm::dvec3(101, 0, 0))));
+    EXPECT_FALSE(testAABB2D(t->rect(o + glm::dvec3(0, -51, 0))));
 }
 
 TEST(MappingModelTest, RotatedAndSkewedAxesUseTheDualBasis) {
@@ -61,6 +61,10 @@ TEST(MappingModelTest, TextureMatrixSelectsAnAtlasCell) {
     ASSERT_TRUE(t);
     expectNear(t->apply({-4, -4, 0}), {0.5, 0.25});
     expectNear(t->apply({4, 4, 0}), {0.75, 0.5});
+    // The footprint stays the rectangle: 2 m beyond its edge M_T would still give a coordinate
+    // inside [0,1]², but the rectangle coordinate fails testAABB2D.
+    EXPECT_TRUE(testAABB2D(t->apply({6, 0, 0})));
+    EXPECT_FALSE(testAABB2D(t->rect({6, 0, 0})));
     // A projective M_T divides by w.
     s.textureMatrix = toGlm(config::Mat3{1, 0, 0, 0, 1, 0, 0, 0, 2});
     auto p = textureTransform(s, glm::dvec3(0.0));
