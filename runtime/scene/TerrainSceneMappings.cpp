@@ -101,7 +101,14 @@ Diagnostics TerrainScene::setupMappings(const gl::Caps& caps) {
         mMappings.push_back(sm);
     }
     mMappingSet->commit();
-    mDesc.mappingCapacity = mMappingSet->capacity();
+    // The program's array only needs the pieces this scenario can produce: a smaller block is
+    // cheaper to index on llvmpipe, and the UBO (sized for capacity()) still covers it.
+    int pieces = 0;
+    for (const SceneMapping& sm : mMappings) {
+        const auto& r = sm.config->route;
+        pieces += r ? int(r->points.size()) * 2 : 1;
+    }
+    mDesc.mappingCapacity = std::clamp(pieces, 1, mMappingSet->capacity());
     return {};
 }
 
