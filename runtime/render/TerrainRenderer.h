@@ -82,6 +82,11 @@ public:
     void setLens(int index, const LensBinding& lens);
     /** @brief Projective mappings bound by begin() (desc.mappingCapacity > 0); not owned. */
     void setMappings(const MappingSet* mappings) { mMappings = mappings; }
+    /**
+     * @brief For the next draw() calls: evaluate only these mappings (indices into the uploaded
+     * list, ascending; at most desc.mappingCapacity). begin() resets to "all".
+     */
+    void setMappingList(const int* indices, int count);
 
     /** @brief Bind program and frame state for `camera`. */
     void begin(const math::Camera& camera, const glm::dvec3& sceneOrigin, const TerrainStyle& style);
@@ -129,6 +134,7 @@ private:
           mLocAmbient = -1, mLocGeomLight = -1, mLocClip = -1;
     DrawCounters mCounters;
     const MappingSet* mMappings = nullptr;
+    GLint mLocMapList = -1, mLocMapListCount = -1;
 };
 
 }  // namespace kiosk::render

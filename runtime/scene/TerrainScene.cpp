@@ -592,6 +592,7 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
             r.setLayer(int(li), b);
             if (li == mFirstSequenceLayer) noteDrawnFrames(l, t);
         }
+        bindTileMappings(p->key.id);
         if (t.clipped) {
             // Overlap the neighbours by a quarter post: with both clip edges on the same line,
             // float interpolation can leave a fragment neither side keeps (a one-pixel crack);

@@ -140,6 +140,8 @@ private:
     Diagnostics setupMappings(const gl::Caps& caps);
     /** @brief Evaluate, cull and upload the mappings for this frame. */
     void bindMappings(const math::Camera& camera);
+    /** @brief Before drawing a mesh of tile `id`: only the mappings touching it. */
+    void bindTileMappings(const TileId& id);
     void noteDrawnFrames(const StackLayer& layer, const terrain::DrawTile& tile);
     void drainCompletions();
     void uploadPayload(terrain::TileHandle handle, terrain::TilePayload& payload);
@@ -189,6 +191,8 @@ private:
     std::unique_ptr<render::MappingSet> mMappingSet;
     std::vector<SceneMapping> mMappings;
     std::vector<render::MappingGpu> mMappingGpu;
+    std::vector<glm::dvec4> mMappingBoxes;  ///< xy footprint of each uploaded mapping
+    std::vector<int> mTileMappings;
     int mRoutePointLayer = -1;
 };
 

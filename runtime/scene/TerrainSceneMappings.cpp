@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace kiosk::scene {
 namespace {
@@ -39,6 +40,7 @@ Diagnostics TerrainScene::setupMappings(const gl::Caps& caps) {
     mMappingSet = std::make_unique<render::MappingSet>(std::move(*set.value));
     const double start = mScenario->clock ? mScenario->clock->start : 0.0;
     int edgeLayer = -1;
+    std::map<std::filesystem::path, int> imageLayers;
     for (const auto& m : list) {
         SceneMapping sm;
         sm.config = &m;
@@ -52,11 +54,15 @@ Diagnostics TerrainScene::setupMappings(const gl::Caps& caps) {
             }
             sm.layer = edgeLayer;
         } else if (!m.image.empty()) {
-            auto img = loadMappingImage(m.image);
-            if (img)
+            // One array layer per file: symbols sharing an atlas share its layer.
+            if (auto it = imageLayers.find(m.image); it != imageLayers.end()) {
+                sm.layer = it->second;
+            } else if (auto img = loadMappingImage(m.image)) {
                 sm.layer = mMappingSet->addImage(img->width, img->height, img->rgba.data());
-            else
+                imageLayers[m.image] = sm.layer;
+            } else {
                 problem = img.diagnostics.format();
+            }
         } else {
             const color::TransferFunction* tf = nullptr;
             if (auto it = mScenario->transferFunctions.find(m.transfer);
@@ -124,11 +130,14 @@ void TerrainScene::bindMappings(const math::Camera& camera) {
     const glm::dvec3 origin(mSceneOrigin.x, mSceneOrigin.y, 0.0);  // z stays absolute
     mapping::MappingCounts counts;
     mMappingGpu.clear();
+    mMappingBoxes.clear();
     bool contextOn = false;
     glm::mat4 context(1.0f);
 
     auto submit = [&](const mapping::MappingState& st, const SceneMapping& sm, int layer) {
         const mapping::CullResult r = mapping::cull(st, camera, frustum, options);
+        const double reach =
+            4.0 * std::max(options.sceneScale, glm::length(st.u) + glm::length(st.v));
         counts.add(r);
         if (r != mapping::CullResult::Active) return;
         const auto t = mapping::textureTransform(st, origin);
@@ -145,6 +154,8 @@ void TerrainScene::bindMappings(const math::Camera& camera) {
         g.srcFactor = int(sm.config->src);
         g.dstFactor = int(sm.config->dst);
         mMappingGpu.push_back(g);
+        const math::Aabb box = mapping::footprint(st, options.zMin, options.zMax, reach);
+        mMappingBoxes.emplace_back(box.min.x, box.min.y, box.max.x, box.max.y);
     };
 
     for (const SceneMapping& sm : mMappings) {
@@ -173,6 +184,21 @@ void TerrainScene::bindMappings(const math::Camera& camera) {
     mFrame.mappingsCulledFrustum = counts.culledFrustum;
     mFrame.mappingsCulledSize = counts.culledSize;
     mFrame.mappingsOverCapacity = counts.overCapacity;
+}
+
+void TerrainScene::bindTileMappings(const TileId& id) {
+    if (!mMappingSet || !mRenderer) return;
+    // A per-tile list keeps the fragment loop short: a tile far from every mapping runs none.
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    mGrid.tileBounds(id, x0, y0, x1, y1);
+    mTileMappings.clear();
+    const std::size_t n =
+        std::min(mMappingBoxes.size(), std::size_t(std::max(0, mDesc.mappingCapacity)));
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::dvec4& b = mMappingBoxes[i];
+        if (b.x <= x1 && b.z >= x0 && b.y <= y1 && b.w >= y0) mTileMappings.push_back(int(i));
+    }
+    mRenderer->setMappingList(mTileMappings.data(), int(mTileMappings.size()));
 }
 
 }  // namespace kiosk::scene

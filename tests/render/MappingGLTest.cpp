@@ -286,6 +286,33 @@ TEST_F(MappingGLTest, BlockUploadsOnlyOnChange) {
     EXPECT_EQ(mSet->blockUploads(), before + 2);
 }
 
+TEST_F(MappingGLTest, BeyondTheBlockCapacityTheRestIsNotDrawn) {
+    // A GPU whose uniform blocks hold two mappings: the third (green, replace) is dropped.
+    gl::Caps small = mCaps;
+    small.maxUniformBlockSize = 16 * (MappingSet::kHeaderVec4 + 2 * MappingSet::kVec4PerMapping);
+    auto set = MappingSet::create(small, 16);
+    ASSERT_TRUE(set.ok()) << set.diagnostics.format();
+    ASSERT_EQ(set->capacity(), 2);
+    std::vector<std::uint8_t> px;
+    for (glm::u8vec4 c :
+         {glm::u8vec4(255, 0, 0, 255), glm::u8vec4(0, 0, 255, 255), glm::u8vec4(0, 255, 0, 255)}) {
+        px.assign(16 * 4, 0);
+        for (int i = 0; i < 16; ++i)
+            for (int k = 0; k < 4; ++k) px[std::size_t(i * 4 + k)] = c[k];
+        set->addImage(4, 4, px.data());
+    }
+    set->commit();
+    CompositeProgramDesc desc;
+    desc.mappingCapacity = set->capacity();
+    auto r = TerrainRenderer::create(desc, mCaps.maxTextureUnits);
+    ASSERT_TRUE(r.ok()) << r.diagnostics.format();
+    mRenderer = std::make_unique<TerrainRenderer>(std::move(*r.value));
+    mSet = std::make_unique<MappingSet>(std::move(*set.value));
+    mRenderer->setMappings(mSet.get());
+    EXPECT_DN_NEAR(centre({whole(0, kOne, kZero), whole(1, kOne, kZero), whole(2, kOne, kZero)}),
+                   dn({0, 0, 1}));
+}
+
 TEST(MappingSetLimits, CapacityFollowsTheBlockSize) {
     EXPECT_EQ(MappingSet::capacityFor(16384), MappingSet::kMaxMappings);
     EXPECT_EQ(MappingSet::capacityFor(16 * (5 + 11 * 3)), 3);

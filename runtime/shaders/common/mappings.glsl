@@ -15,6 +15,10 @@ layout(std140) uniform Mappings {
     mat4 uMapContext;
     vec4 uMap[KIOSK_MAX_MAPPINGS * 11];
 };
+// Per draw: the mappings whose footprint touches the tile, ascending (explicit order kept);
+// uMapListCount < 0 means all of them. Tiles far from every mapping loop zero times.
+uniform ivec4 uMapList[KIOSK_MAX_MAPPINGS / 4 + 1];
+uniform int uMapListCount;
 uniform highp sampler2DArray uMapData;  // RGBA16F: images, or (LUT coord x valid, valid, 0, 0)
 uniform highp sampler2DArray uMapLut;   // RGBA8 rows: [below, LUT..., above]
 
@@ -64,12 +68,17 @@ vec4 mapSource(int i, vec2 r) {
 
 // Figure 2 of the paper: every active mapping in its explicit order (later over earlier),
 // skipping those whose coordinates fall outside [0,1]^2.
+int mapIndex(int j) {
+    return uMapListCount < 0 ? j : uMapList[j / 4][j % 4];
+}
+
 vec3 applyMappings(vec3 C, vec3 p) {
-    int n = int(uMapHeader.x + 0.5);
+    int n = uMapListCount < 0 ? int(uMapHeader.x + 0.5) : uMapListCount;
     if (uMapHeader.y > 0.5) {
         // Focus + context: the terrain outside every focus mapping takes the context matrix.
         float focus = 0.0;
-        for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+            int i = mapIndex(j);
             if (uMap[11 * i + 9].w < 0.5) continue;
             vec2 s = mapCoord(i, p);
             if (testAABB2D(s)) focus = max(focus, mapSource(i, s).a);
@@ -77,7 +86,8 @@ vec3 applyMappings(vec3 C, vec3 p) {
         vec3 dimmed = clamp((uMapContext * vec4(C, 1.0)).rgb, 0.0, 1.0);
         C = mix(dimmed, C, focus);
     }
-    for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+        int i = mapIndex(j);
         vec2 s = mapCoord(i, p);
         if (!testAABB2D(s)) continue;
         vec4 src = mapSource(i, s);
