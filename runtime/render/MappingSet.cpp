@@ -52,6 +52,31 @@ void linearClampArray() {
 
 }  // namespace
 
+glm::vec4 MappingSet::blendCoefficients(int factor) {
+    switch (factor) {
+        case 0:
+            return {0, 0, 0, 0};  // zero
+        case 1:
+            return {1, 0, 0, 0};  // one
+        case 2:
+            return {0, 1, 0, 0};  // srcColor
+        case 3:
+            return {1, -1, 0, 0};  // oneMinusSrcColor
+        case 4:
+            return {0, 0, 1, 0};  // dstColor
+        case 5:
+            return {1, 0, -1, 0};  // oneMinusDstColor
+        case 6:
+            return {0, 0, 0, 1};  // srcAlpha
+        case 7:
+            return {1, 0, 0, -1};  // oneMinusSrcAlpha
+        case 8:
+            return {1, 0, 0, 0};  // dstAlpha: the terrain is opaque
+        default:
+            return {0, 0, 0, 0};  // oneMinusDstAlpha
+    }
+}
+
 int MappingSet::capacityFor(int maxUniformBlockSize) {
     const int vec4s = maxUniformBlockSize / 16 - kHeaderVec4;
     return std::clamp(vec4s / kVec4PerMapping, 0, kMaxMappings);
@@ -176,7 +201,8 @@ bool MappingSet::setMappings(const std::vector<MappingGpu>& mappings, bool conte
         for (int c = 0; c < 3; ++c) p[2 + c] = glm::vec4(m.textureMatrix[c], 0.0f);
         for (int c = 0; c < 4; ++c) p[5 + c] = m.colorMatrix[c];
         p[9] = glm::vec4(float(m.layer), float(m.lut), m.opacity, m.focus ? 1.0f : 0.0f);
-        p[10] = glm::vec4(float(m.srcFactor), float(m.dstFactor), 0.0f, 0.0f);
+        p[10] = blendCoefficients(m.srcFactor);
+        p[11] = blendCoefficients(m.dstFactor);
     }
     glBindBuffer(GL_UNIFORM_BUFFER, mBlock.id());
     glBufferSubData(GL_UNIFORM_BUFFER, 0, GLsizeiptr(block.size() * sizeof(glm::vec4)),

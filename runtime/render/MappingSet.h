@@ -38,8 +38,14 @@ public:
     static constexpr int kMaxMappings = 64;
     static constexpr int kLutEntries = 1024;
     static constexpr int kLutWidth = kLutEntries + 2;
-    static constexpr int kVec4PerMapping = 11;
+    static constexpr int kVec4PerMapping = 12;
     static constexpr int kHeaderVec4 = 5;
+
+    /**
+     * @brief A GL blend factor (config::BlendFactor order, 0..9) as coefficients k of
+     * k.x + k.y C_S.rgb + k.z C_D.rgb + k.w C_S.a; destination alpha is 1. Unknown -> zero.
+     */
+    static glm::vec4 blendCoefficients(int factor);
 
     /** @brief Mappings a block of `maxUniformBlockSize` bytes holds (capped at kMaxMappings). */
     static int capacityFor(int maxUniformBlockSize);

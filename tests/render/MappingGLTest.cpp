@@ -315,7 +315,7 @@ TEST_F(MappingGLTest, BeyondTheBlockCapacityTheRestIsNotDrawn) {
 
 TEST(MappingSetLimits, CapacityFollowsTheBlockSize) {
     EXPECT_EQ(MappingSet::capacityFor(16384), MappingSet::kMaxMappings);
-    EXPECT_EQ(MappingSet::capacityFor(16 * (5 + 11 * 3)), 3);
+    EXPECT_EQ(MappingSet::capacityFor(16 * (5 + 12 * 3)), 3);
     EXPECT_EQ(MappingSet::capacityFor(64), 0);
 }
 

@@ -5,15 +5,16 @@
 // One std140 block, uploaded only when a mapping changes (render/MappingSet):
 //   uMapHeader  x: active count, y: 1 when the context colour matrix applies
 //   uMapContext applied to (rgb, 1) of the terrain outside every focus mapping
-//   uMap[11 i + 0..1]  rows S, T of M_P · M_O: scene metres -> rectangle coordinate r in [0,1]²
-//   uMap[11 i + 2..4]  columns of M_T: r -> sampling coordinate (homogeneous)
-//   uMap[11 i + 5..8]  colour matrix M_C columns, applied to (rgb, 1); alpha untouched
-//   uMap[11 i + 9]     (data layer, LUT layer or -1, opacity, focus 0/1)
-//   uMap[11 i + 10]    (source factor, destination factor, 0, 0)
+//   uMap[12 i + 0..1]  rows S, T of M_P · M_O: scene metres -> rectangle coordinate r in [0,1]²
+//   uMap[12 i + 2..4]  columns of M_T: r -> sampling coordinate (homogeneous)
+//   uMap[12 i + 5..8]  colour matrix M_C columns, applied to (rgb, 1); alpha untouched
+//   uMap[12 i + 9]     (data layer, LUT layer or -1, opacity, focus 0/1)
+//   uMap[12 i + 10..11] source / destination blend factor as coefficients k of
+//                      k.x + k.y C_S.rgb + k.z C.rgb + k.w C_S.a (every GL factor is one)
 layout(std140) uniform Mappings {
     vec4 uMapHeader;
     mat4 uMapContext;
-    vec4 uMap[KIOSK_MAX_MAPPINGS * 11];
+    vec4 uMap[KIOSK_MAX_MAPPINGS * 12];
 };
 // Per draw: the mappings whose footprint touches the tile, ascending (explicit order kept);
 // uMapListCount < 0 means all of them. Tiles far from every mapping loop zero times.
@@ -22,24 +23,16 @@ uniform int uMapListCount;
 uniform highp sampler2DArray uMapData;  // RGBA16F: images, or (LUT coord x valid, valid, 0, 0)
 uniform highp sampler2DArray uMapLut;   // RGBA8 rows: [below, LUT..., above]
 
-// Blend factors in the order of config::BlendFactor; destination alpha is 1 (opaque terrain).
-vec3 mapFactor(int f, vec4 src, vec3 dst) {
-    if (f == 0) return vec3(0.0);
-    if (f == 1) return vec3(1.0);
-    if (f == 2) return src.rgb;
-    if (f == 3) return vec3(1.0) - src.rgb;
-    if (f == 4) return dst;
-    if (f == 5) return vec3(1.0) - dst;
-    if (f == 6) return vec3(src.a);
-    if (f == 7) return vec3(1.0 - src.a);
-    if (f == 8) return vec3(1.0);
-    return vec3(0.0);
+// A blend factor from its coefficients (render::blendCoefficients): no branches, which matters
+// on llvmpipe where a per-mapping switch runs every case for every lane.
+vec3 mapFactor(vec4 k, vec4 src, vec3 dst) {
+    return vec3(k.x) + k.y * src.rgb + k.z * dst + vec3(k.w * src.a);
 }
 
 // The rectangle coordinate of scene point p for mapping i; outside [0,1]^2 fails testAABB2D.
 vec2 mapCoord(int i, vec3 p) {
     vec4 h = vec4(p, 1.0);
-    return vec2(dot(uMap[11 * i], h), dot(uMap[11 * i + 1], h));
+    return vec2(dot(uMap[12 * i], h), dot(uMap[12 * i + 1], h));
 }
 
 bool testAABB2D(vec2 s) {
@@ -50,8 +43,8 @@ bool testAABB2D(vec2 s) {
 // M_T · (r, 1), colour matrix applied, alpha scaled by the mapping's opacity. The image's top
 // row lies at t = 1.
 vec4 mapSource(int i, vec2 r) {
-    vec4 param = uMap[11 * i + 9];
-    vec3 q = mat3(uMap[11 * i + 2].xyz, uMap[11 * i + 3].xyz, uMap[11 * i + 4].xyz) * vec3(r, 1.0);
+    vec4 param = uMap[12 * i + 9];
+    vec3 q = mat3(uMap[12 * i + 2].xyz, uMap[12 * i + 3].xyz, uMap[12 * i + 4].xyz) * vec3(r, 1.0);
     vec2 s = q.xy / q.z;
     vec4 d = texture(uMapData, vec3(s.x, 1.0 - s.y, param.x));
     vec4 c = d;
@@ -60,7 +53,7 @@ vec4 mapSource(int i, vec2 r) {
         c = texture(uMapLut, vec3(u, 0.5, param.y));
         c.a *= step(0.5, d.g);
     }
-    mat4 m = mat4(uMap[11 * i + 5], uMap[11 * i + 6], uMap[11 * i + 7], uMap[11 * i + 8]);
+    mat4 m = mat4(uMap[12 * i + 5], uMap[12 * i + 6], uMap[12 * i + 7], uMap[12 * i + 8]);
     c.rgb = clamp((m * vec4(c.rgb, 1.0)).rgb, 0.0, 1.0);
     c.a = clamp(c.a * param.z, 0.0, 1.0);
     return c;
@@ -74,12 +67,14 @@ int mapIndex(int j) {
 
 vec3 applyMappings(vec3 C, vec3 p) {
     int n = uMapListCount < 0 ? int(uMapHeader.x + 0.5) : uMapListCount;
+    // Uniform early out: on llvmpipe even loops that run zero times cost (measured ~2x).
+    if (n <= 0 && uMapHeader.y < 0.5) return C;
     if (uMapHeader.y > 0.5) {
         // Focus + context: the terrain outside every focus mapping takes the context matrix.
         float focus = 0.0;
         for (int j = 0; j < n; ++j) {
             int i = mapIndex(j);
-            if (uMap[11 * i + 9].w < 0.5) continue;
+            if (uMap[12 * i + 9].w < 0.5) continue;
             vec2 s = mapCoord(i, p);
             if (testAABB2D(s)) focus = max(focus, mapSource(i, s).a);
         }
@@ -91,9 +86,8 @@ vec3 applyMappings(vec3 C, vec3 p) {
         vec2 s = mapCoord(i, p);
         if (!testAABB2D(s)) continue;
         vec4 src = mapSource(i, s);
-        vec4 f = uMap[11 * i + 10];
-        C = clamp(src.rgb * mapFactor(int(f.x + 0.5), src, C) +
-                      C * mapFactor(int(f.y + 0.5), src, C),
+        C = clamp(src.rgb * mapFactor(uMap[12 * i + 10], src, C) +
+                      C * mapFactor(uMap[12 * i + 11], src, C),
                   0.0, 1.0);
     }
     return C;
