@@ -181,6 +181,8 @@ private:
     }
 
     void mapping(const ProjectiveMapping& m) {
+        // An image file or a route brings its own data layer (checked by the reader).
+        if (m.data.store.empty() && m.data.layer.empty() && m.data.sequence.empty()) return;
         source(m.pointer + "/data", m.data, false, m.transfer, m.pointer + "/transfer",
                std::nullopt);
     }

@@ -160,6 +160,17 @@ struct MappingKey {
     std::string pointer;
 };
 
+/**
+ * @brief A route of way points expanded into the paper's edge and way-point mappings (§5.1);
+ * replaces origin/u/v and the data layer (the textures are procedural line profiles).
+ */
+struct MappingRoute {
+    std::vector<Vec2> points;  ///< store CRS metres
+    double width = 30;         ///< edge width, metres
+    double pointRadius = 0;    ///< way-point disc radius, metres (0: no points)
+    std::string pointer;
+};
+
 /** @brief A projective mapping (Trapp & Döllner): PM = (O, U, V, M_T, data, LUT, M_C, blend). */
 struct ProjectiveMapping {
     std::string id;
@@ -176,6 +187,10 @@ struct ProjectiveMapping {
     bool enabled = true;
     std::vector<MappingKey> keys;
     std::string pointer;
+    std::filesystem::path image;  ///< RGBA image file as the data layer (instead of `data`)
+    std::optional<MappingRoute> route;
+    /** @brief Focus+context: applied to (rgb, 1) of the terrain outside every such mapping. */
+    std::optional<Mat4> contextMatrix;
 };
 
 struct Viewpoint {

@@ -49,8 +49,9 @@ const std::map<std::string, std::vector<std::string>>& propertyTable() {
         {"LensKey", {"time", "center", "radius", "radii", "rotation"}},
         {"ProjectiveMapping",
          {"id", "origin", "u", "v", "textureMatrix", "data", "transfer", "colorMatrix", "blend",
-          "opacity", "enabled", "keys"}},
+          "opacity", "enabled", "keys", "image", "route", "contextMatrix"}},
         {"MappingBlend", {"src", "dst"}},
+        {"MappingRoute", {"points", "width", "pointRadius"}},
         {"MappingKey", {"time", "origin", "u", "v", "textureMatrix", "colorMatrix", "opacity"}},
         {"Viewpoint", {"target", "heading", "pitch", "range"}},
         {"CameraPath", {"keys", "interpolation"}},
@@ -897,11 +898,20 @@ private:
             ProjectiveMapping m;
             m.pointer = ptr;
             assign(m.id, o.name("id", true));
-            assign(m.origin, o.numbers<3>("origin", true));
-            assign(m.u, o.numbers<3>("u", true));
-            assign(m.v, o.numbers<3>("v", true));
+            // A route brings its own geometry; an image or a route its own data layer.
+            const bool routed = o.has("route");
+            assign(m.origin, o.numbers<3>("origin", !routed));
+            assign(m.u, o.numbers<3>("u", !routed));
+            assign(m.v, o.numbers<3>("v", !routed));
             assign(m.textureMatrix, o.numbers<9>("textureMatrix"));
-            if (const json* d = o.get("data", true)) assign(m.data, source(*d, o.at("data")));
+            if (auto img = o.str("image")) {
+                m.image = mC.resolve(o.at("image"), *img);
+                fileExists(m.image, o.at("image"));
+            }
+            if (const json* r = o.object("route")) m.route = route(*r, o.at("route"));
+            m.contextMatrix = o.numbers<16>("contextMatrix");
+            if (const json* d = o.get("data", !routed && !o.has("image")))
+                assign(m.data, source(*d, o.at("data")));
             assign(m.transfer, o.name("transfer"));
             assign(m.colorMatrix, o.numbers<16>("colorMatrix"));
             if (const json* b = o.get("blend")) {
@@ -936,6 +946,23 @@ private:
             }
             mS.projectiveMappings.push_back(std::move(m));
         }
+    }
+
+    MappingRoute route(const json& j, const std::string& ptr) {
+        MappingRoute r;
+        r.pointer = ptr;
+        Obj o(mC, j, ptr, "MappingRoute");
+        if (!o.valid()) return r;
+        if (const json* pts = o.array("points", true)) {
+            for (std::size_t i = 0; i < pts->size(); ++i)
+                if (auto p = readNumbers<2>(mC, (*pts)[i], childPointer(o.at("points"), i)))
+                    r.points.push_back(*p);
+            if (pts->size() < 2)
+                mC.error("SCENARIO_RANGE", o.at("points"), "a route needs at least 2 way points");
+        }
+        assign(r.width, o.num("width", Range{0, 1e6, true, false}));
+        assign(r.pointRadius, o.num("pointRadius", Range{0, 1e6, false, false}));
+        return r;
     }
 
     std::optional<Viewpoint> viewpoint(const Obj& o, bool targetRequired) {

@@ -38,6 +38,9 @@ std::string FrameStats::toJson() const {
         missingFrames += f.sequenceTilesMissing > 0 ? 1u : 0u;
         heldTotal += f.holdingSequence ? 1u : 0u;
         hitsTotal += f.prefetchHits;
+        frames["mappings_active"].push_back(f.mappingsActive);
+        frames["mappings_culled_frustum"].push_back(f.mappingsCulledFrustum);
+        frames["mappings_culled_size"].push_back(f.mappingsCulledSize);
     }
     j["summary"] = {{"frames", mFrames.size()},
                     {"frame_ms", {{"median", percentile(ms, 50)},

@@ -21,6 +21,9 @@ struct FrameRecord {
     std::uint32_t heldFrames = 0;   ///< consecutive held frames, this one included
     std::int32_t prefetchDepth = 0; ///< frames ahead the prefetch planner wanted
     std::uint32_t prefetchHits = 0; ///< frames shown this frame that were prefetched in time
+    std::uint32_t mappingsActive = 0;         ///< projective mappings evaluated
+    std::uint32_t mappingsCulledFrustum = 0;  ///< outside the view frustum
+    std::uint32_t mappingsCulledSize = 0;     ///< screen-space size below the threshold
 };
 
 /** @brief Percentile by linear interpolation between closest ranks (p in [0,100]). */

@@ -178,6 +178,9 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     r.heldFrames = f.heldFrames;
     r.prefetchDepth = f.prefetchDepth;
     r.prefetchHits = f.prefetchHits;
+    r.mappingsActive = f.mappingsActive;
+    r.mappingsCulledFrustum = f.mappingsCulledFrustum;
+    r.mappingsCulledSize = f.mappingsCulledSize;
     return r;
 }
 

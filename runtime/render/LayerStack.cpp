@@ -46,6 +46,7 @@ int textureUnitsNeeded(const CompositeProgramDesc& desc) {
     int units = 1 + desc.lutCount;  // elevation LUT + transfer-function LUTs
     for (const auto& l : desc.layers) units += l.kind == LayerKind::Sequence ? 2 : 1;
     for (const auto& l : desc.layers) units += l.kind == LayerKind::Sequence && l.arrival ? 1 : 0;
+    if (desc.mappingCapacity > 0) units += 2;  // mapping data + LUT arrays
     return units;
 }
 
@@ -84,6 +85,11 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
             s << NormalShading::glslHelpers();
             break;
         }
+    if (desc.mappingCapacity > 0) {
+        auto text = gl::ShaderLibrary::source("common/mappings.glsl");
+        if (!text) return text.diagnostics;
+        s << "#define KIOSK_MAX_MAPPINGS " << desc.mappingCapacity << "\n" << *text << "\n";
+    }
     for (int i = 0; i < n; ++i) {
         s << "uniform sampler2D uLayer" << i << ";\n";
         if (desc.layers[std::size_t(i)].kind == LayerKind::Sequence)
@@ -211,6 +217,8 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
         }
         s << "    }\n";
     }
+    // Mappings draw on the composited stack and are lit with it (docs/projective-mappings.md).
+    if (desc.mappingCapacity > 0) s << "    C = applyMappings(C, vec3(vScenePos, vElevation));\n";
     s << "    C *= mix(1.0, lambert(vNormal, uLightDir, uAmbient), uGeometryLighting);\n";
     for (std::size_t j = 0; j < desc.lenses.size(); ++j) {
         if (desc.lenses[j].kind != LensKind::Highlight) continue;

@@ -66,6 +66,13 @@ struct CompositeProgramDesc {
      * the fidelity tests measure the rendered surface against the full-resolution data.
      */
     bool outputPosition = false;
+    /**
+     * @brief Projective mappings the program evaluates per fragment (0: none). When > 0 the
+     * shader includes common/mappings.glsl with this capacity: after the layer stack, before
+     * lighting and lenses, `C = applyMappings(C, (scenePos, elevation))`. Two more texture units
+     * (data array, LUT array); block "Mappings" (see render/MappingSet).
+     */
+    int mappingCapacity = 0;
 };
 
 /**

@@ -1,7 +1,9 @@
 #include "runtime/render/TerrainRenderer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "runtime/gl/ProgramBuilder.h"
 #include "runtime/render/Textures.h"
@@ -39,6 +41,8 @@ Result<TerrainRenderer> TerrainRenderer::create(const CompositeProgramDesc& desc
     r.mLocGeomLight = loc("uGeometryLighting");
     r.mLocClip = loc("uClip");
     r.mLocTauTex = loc("uTauTex");
+    r.mLocMapList = loc("uMapList");
+    r.mLocMapListCount = loc("uMapListCount");
     for (std::size_t i = 0; i < desc.layers.size(); ++i) {
         const std::string n = std::to_string(i);
         r.mLayerLocs.push_back({loc("uLayer" + n), loc("uLayerB" + n), loc("uLayerRect" + n),
@@ -136,6 +140,21 @@ void TerrainRenderer::begin(const math::Camera& camera, const glm::dvec3& sceneO
         glUniform2f(mLensLocs[j][2], float(std::cos(a)), float(std::sin(a)));
     }
     for (int i = 0; i < int(mDesc.layers.size()); ++i) setLayer(i, {});
+    if (mDesc.mappingCapacity > 0 && mMappings) {
+        // The last two units (LayerStack's textureUnitsNeeded): data and LUT arrays.
+        const int units = textureUnitsNeeded(mDesc);
+        mMappings->bind(mProgram.id(), units - 2, units - 1);
+        glUniform1i(mLocMapListCount, -1);
+    }
+}
+
+void TerrainRenderer::setMappingList(const int* indices, int count) {
+    if (mDesc.mappingCapacity <= 0 || mLocMapListCount < 0) return;
+    count = std::clamp(count, 0, mDesc.mappingCapacity);
+    std::vector<GLint> packed(std::size_t(mDesc.mappingCapacity / 4 + 1) * 4, 0);
+    for (int j = 0; j < count; ++j) packed[std::size_t(j)] = indices[j];
+    glUniform4iv(mLocMapList, GLsizei(packed.size() / 4), packed.data());
+    glUniform1i(mLocMapListCount, count);
 }
 
 void TerrainRenderer::setLayer(int index, const LayerBinding& b) {

@@ -9,6 +9,7 @@
 #include "runtime/math/Camera.h"
 #include "runtime/render/GpuMesh.h"
 #include "runtime/render/LayerStack.h"
+#include "runtime/render/MappingSet.h"
 
 namespace kiosk::render {
 
@@ -85,6 +86,13 @@ public:
     void setElevationLut(int size, const std::uint8_t* rgba, float domainMin, float domainMax);
     void setLut(int index, const LutBinding& lut);
     void setLens(int index, const LensBinding& lens);
+    /** @brief Projective mappings bound by begin() (desc.mappingCapacity > 0); not owned. */
+    void setMappings(const MappingSet* mappings) { mMappings = mappings; }
+    /**
+     * @brief For the next draw() calls: evaluate only these mappings (indices into the uploaded
+     * list, ascending; at most desc.mappingCapacity). begin() resets to "all".
+     */
+    void setMappingList(const int* indices, int count);
 
     /** @brief Bind program and frame state for `camera`. */
     void begin(const math::Camera& camera, const glm::dvec3& sceneOrigin, const TerrainStyle& style);
@@ -142,6 +150,8 @@ private:
           mLocElevDomain = -1, mLocElevWeight = -1, mLocBase = -1, mLocLight = -1,
           mLocAmbient = -1, mLocGeomLight = -1, mLocClip = -1, mLocTauTex = -1;
     DrawCounters mCounters;
+    const MappingSet* mMappings = nullptr;
+    GLint mLocMapList = -1, mLocMapListCount = -1;
 };
 
 }  // namespace kiosk::render

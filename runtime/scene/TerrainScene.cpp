@@ -248,6 +248,7 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
 
     s->mDesc = desc;
     s->mMaxTextureUnits = caps.maxTextureUnits;
+    if (Diagnostics d = s->setupMappings(caps); d.hasErrors()) return d;
     for (SceneLut& lut : s->mLuts) {
         std::vector<std::uint8_t> rgba;
         if (lut.function) {
@@ -286,6 +287,7 @@ Diagnostics TerrainScene::buildRenderer() {
     auto renderer = render::TerrainRenderer::create(mDesc, mMaxTextureUnits);
     if (!renderer) return renderer.diagnostics;
     mRenderer = std::make_unique<render::TerrainRenderer>(std::move(*renderer.value));
+    mRenderer->setMappings(mMappingSet.get());
     for (std::size_t k = 0; k < mLuts.size(); ++k) {
         const SceneLut& lut = mLuts[k];
         render::LutBinding b;
@@ -566,6 +568,7 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
     mFrame.sequencePairCommitted =
         mFirstSequenceLayer < mLayers.size() && mLayers[mFirstSequenceLayer].shown.hasPair;
     bindLenses();
+    bindMappings(camera);
     auto& r = *mRenderer;
     r.counters().clear();
     r.begin(camera, mSceneOrigin, style);
@@ -601,6 +604,7 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
             r.setLayer(int(li), b);
             if (li == mFirstSequenceLayer) noteDrawnFrames(l, t);
         }
+        bindTileMappings(p->key.id);
         if (t.clipped) {
             // Overlap the neighbours by a quarter post: with both clip edges on the same line,
             // float interpolation can leave a fragment neither side keeps (a one-pixel crack);

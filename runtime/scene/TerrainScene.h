@@ -17,6 +17,7 @@
 #include "runtime/math/Camera.h"
 #include "runtime/math/Frustum.h"
 #include "runtime/render/GpuMesh.h"
+#include "runtime/render/MappingSet.h"
 #include "runtime/render/TerrainRenderer.h"
 #include "runtime/scene/Playback.h"
 #include "runtime/terrain/MeshCells.h"
@@ -65,6 +66,11 @@ struct SceneFrameInfo {
     std::uint32_t prefetchHits = 0;
     std::uint64_t prefetchGeneration = 0;  ///< bumped on each seek (stale prefetch dropped)
     double frameLoadMs = 0;                ///< measured mean time to load one frame of the view
+    /** @brief Projective mappings this frame (route pieces count one each). */
+    std::uint32_t mappingsActive = 0;
+    std::uint32_t mappingsCulledFrustum = 0;  ///< rectangle outside the view frustum
+    std::uint32_t mappingsCulledSize = 0;     ///< screen-space size rho below the threshold
+    std::uint32_t mappingsOverCapacity = 0;   ///< active but beyond the uniform block
 };
 
 /** @brief A transfer function ready for the GPU and the legend. */
@@ -157,6 +163,12 @@ private:
 
     Diagnostics buildRenderer();
     void bindLenses();
+    /** @brief Data layers and LUTs of the projective mappings (TerrainSceneMappings.cpp). */
+    Diagnostics setupMappings(const gl::Caps& caps);
+    /** @brief Evaluate, cull and upload the mappings for this frame. */
+    void bindMappings(const math::Camera& camera);
+    /** @brief Before drawing a mesh of tile `id`: only the mappings touching it. */
+    void bindTileMappings(const TileId& id);
     void noteDrawnFrames(const StackLayer& layer, const terrain::DrawTile& tile);
     void drainCompletions();
     void uploadPayload(terrain::TileHandle handle, terrain::TilePayload& payload);
@@ -212,6 +224,18 @@ private:
     anim::LoadTimeEstimator mTileLoad{0.005};  ///< seconds per sequence tile on the loader
     std::vector<terrain::TileRequest> mSequencePrefetch;
     std::vector<terrain::TileRequest> mPrefetchAll;  ///< camera prefetch still missing, as sent
+    /** @brief One scenario mapping and the array layers it samples. */
+    struct SceneMapping {
+        const config::ProjectiveMapping* config = nullptr;
+        int layer = -1;  ///< data layer (route: edge profile)
+        int lut = -1;    ///< LUT row for scalar data, -1 for images
+    };
+    std::unique_ptr<render::MappingSet> mMappingSet;
+    std::vector<SceneMapping> mMappings;
+    std::vector<render::MappingGpu> mMappingGpu;
+    std::vector<glm::dvec4> mMappingBoxes;  ///< xy footprint of each uploaded mapping
+    std::vector<int> mTileMappings;
+    int mRoutePointLayer = -1;
 };
 
 }  // namespace kiosk::scene

@@ -236,6 +236,26 @@ const BadCase kBad[] = {
      R"("projectiveMappings": [{"id": "m", "origin": [0,0,0], "u": [1,0,0], "v": [0,1,0], )"
      R"("data": {"store": "v", "layer": "x"}, "colorMatrix": [1,0,0]}])",
      "SCENARIO_TYPE", "/projectiveMappings/0/colorMatrix", "array of 16 numbers"},
+    {"mapping route one point",
+     R"("projectiveMappings": [{"id": "r", "route": {"points": [[0, 0]]}}])", "SCENARIO_RANGE",
+     "/projectiveMappings/0/route/points", "at least 2 way points"},
+    {"mapping route point size",
+     R"("projectiveMappings": [{"id": "r", "route": {"points": [[0, 0], [1, 2, 3]]}}])",
+     "SCENARIO_TYPE", "/projectiveMappings/0/route/points/1", "array of 2 numbers"},
+    {"mapping route width", R"("projectiveMappings": [{"id": "r", "route": {"points": )"
+                            R"([[0, 0], [1, 1]], "width": 0}}])",
+     "SCENARIO_RANGE", "/projectiveMappings/0/route/width", "width"},
+    {"mapping image missing",
+     R"("projectiveMappings": [{"id": "m", "origin": [0,0,0], "u": [1,0,0], "v": [0,1,0], )"
+     R"("image": "no-such-atlas.png"}])",
+     "SCENARIO_FILE", "/projectiveMappings/0/image", "does not exist"},
+    {"mapping without data", R"("projectiveMappings": [{"id": "m", "origin": [0,0,0], )"
+                             R"("u": [1,0,0], "v": [0,1,0]}])",
+     "SCENARIO_MISSING", "/projectiveMappings/0", "data"},
+    {"mapping context matrix size",
+     R"("projectiveMappings": [{"id": "r", "route": {"points": [[0, 0], [1, 1]]}, )"
+     R"("contextMatrix": [1, 0]}])",
+     "SCENARIO_TYPE", "/projectiveMappings/0/contextMatrix", "array of 16 numbers"},
     {"camera unknown viewpoint",
      R"("viewpoints": {"home": {"target": [0,0,0]}}, "camera": {"viewpoint": "hom"})",
      "SCENARIO_UNKNOWN_REFERENCE", "/camera/viewpoint",
