@@ -21,6 +21,13 @@ struct FrameRecord {
     std::uint32_t heldFrames = 0;   ///< consecutive held frames, this one included
     std::int32_t prefetchDepth = 0; ///< frames ahead the prefetch planner wanted
     std::uint32_t prefetchHits = 0; ///< frames shown this frame that were prefetched in time
+    // Main-thread time per phase of drawFrame() (ms; the rasterizer's share lands in whatever
+    // waits for it: glFinish / swap). Feeds the benchmarks' per-phase figures.
+    double updateMs = 0;   ///< select + drain completions + uploads
+    double uploadMs = 0;   ///< of updateMs: GPU uploads of arrived tiles
+    std::uint32_t uploads = 0;
+    double drawMs = 0;     ///< terrain draw submission (vertex work, binning, shader variants)
+    double overlayMs = 0;  ///< overlays
 };
 
 /** @brief Percentile by linear interpolation between closest ranks (p in [0,100]). */

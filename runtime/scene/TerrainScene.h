@@ -65,6 +65,7 @@ struct SceneFrameInfo {
     std::uint32_t prefetchHits = 0;
     std::uint64_t prefetchGeneration = 0;  ///< bumped on each seek (stale prefetch dropped)
     double frameLoadMs = 0;                ///< measured mean time to load one frame of the view
+    double uploadMs = 0;                   ///< GPU uploads (and evicted releases) this frame
 };
 
 /** @brief A transfer function ready for the GPU and the legend. */
