@@ -3,6 +3,8 @@
 // main thread (update = select + uploads, draw submission, overlays) and what was left waiting
 // for llvmpipe's rasterizer threads (finish = glFinish after drawFrame). Spikes are listed with
 // their phases so a long frame can be attributed, not just counted.
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <cstddef>
 #include <nlohmann/json.hpp>
@@ -15,12 +17,26 @@ namespace kiosk::bench {
 struct PhaseSample {
     double frameMs = 0, updateMs = 0, uploadMs = 0, drawMs = 0, overlayMs = 0, finishMs = 0;
     std::uint32_t uploads = 0;
+    /** @brief CPU time of the whole process (all threads) during the frame: a frame whose
+     * wall time grew but whose CPU time did not was waiting for other jobs on the machine. */
+    double cpuMs = 0;
+    std::uint64_t triangles = 0;
 };
 
+/** @brief CPU time used so far by every thread of the process (ms). */
+inline double processCpuMs() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return (double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) * 1e3 +
+            double(u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-3);
+}
+
 /** @brief A sample from a drawFrame() record and the whole frame's wall time (finish = rest). */
-inline PhaseSample phaseSample(const app::FrameRecord& r, double frameMs) {
+inline PhaseSample phaseSample(const app::FrameRecord& r, double frameMs, double cpuMs = 0) {
     PhaseSample s;
     s.frameMs = frameMs;
+    s.cpuMs = cpuMs;
+    s.triangles = r.triangles;
     s.updateMs = r.updateMs;
     s.uploadMs = r.uploadMs;
     s.uploads = r.uploads;
@@ -49,7 +65,8 @@ inline nlohmann::json phaseReport(const std::vector<PhaseSample>& v, std::size_t
                        {"upload", stats(&PhaseSample::uploadMs)},
                        {"draw", stats(&PhaseSample::drawMs)},
                        {"overlay", stats(&PhaseSample::overlayMs)},
-                       {"finish", stats(&PhaseSample::finishMs)}};
+                       {"finish", stats(&PhaseSample::finishMs)},
+                       {"process_cpu", stats(&PhaseSample::cpuMs)}};
     std::vector<double> frame;
     for (const auto& s : v) frame.push_back(s.frameMs);
     const double median = app::percentile(frame, 50);
@@ -70,7 +87,9 @@ inline nlohmann::json phaseReport(const std::vector<PhaseSample>& v, std::size_t
                                  {"uploads", s.uploads},
                                  {"draw", s.drawMs},
                                  {"overlay", s.overlayMs},
-                                 {"finish", s.finishMs}});
+                                 {"finish", s.finishMs},
+                                 {"process_cpu", s.cpuMs},
+                                 {"triangles", s.triangles}});
     }
     return out;
 }

@@ -80,11 +80,11 @@ Flight fly(app::Session& s, int width, int height, int frames, bool settleFirst)
             // this the first timed frame paid for all of them (a 1-3 s "spike" at p99).
             glFinish();
         }
-        const double t0 = clock.now();
+        const double t0 = clock.now(), cpu0 = bench::processCpuMs();
         auto rec = s.drawFrame(cam, t, width, height);
         glFinish();
         f.frameMs.push_back((clock.now() - t0) * 1000.0);
-        f.phases.push_back(bench::phaseSample(rec, f.frameMs.back()));
+        f.phases.push_back(bench::phaseSample(rec, f.frameMs.back(), bench::processCpuMs() - cpu0));
         f.triangles.push_back(double(rec.triangles));
         f.tiles.push_back(double(rec.tilesDrawn));
         f.fromAncestor.push_back(double(rec.tilesFromAncestor));

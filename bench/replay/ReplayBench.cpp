@@ -139,14 +139,15 @@ nlohmann::json replay(const std::string& scenario, int w, int h, double seconds,
         const auto step = clock.advance(dt, ready);
         wraps += step.wrapped;
         s.setPlayback(scene::playbackOf(clock));
-        const double t0 = wall.now();
+        const double t0 = wall.now(), cpu0 = bench::processCpuMs();
         app::FrameRecord rec = s.drawFrame(cameraAt(step.time), step.time, w, h);
         glFinish();
         rec.frameMs = (wall.now() - t0) * 1000.0;
+        const double cpuMs = bench::processCpuMs() - cpu0;
         // As play does: the tiles of the view the camera path reaches in two seconds.
         s.terrain().prefetch(cameraAt(clock.predict(2.0)));
         ms.push_back(rec.frameMs);
-        phases.push_back(bench::phaseSample(rec, rec.frameMs));
+        phases.push_back(bench::phaseSample(rec, rec.frameMs, cpuMs));
         const auto& f = s.terrain().frameInfo();
         missing += f.sequenceTilesMissing > 0;
         held += f.holdingSequence;

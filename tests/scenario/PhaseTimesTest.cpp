@@ -13,8 +13,11 @@ TEST(PhaseTimesTest, FinishIsWhatTheMainThreadPhasesDoNotExplain) {
     r.uploads = 3;
     r.drawMs = 10;
     r.overlayMs = 1;
-    const PhaseSample s = phaseSample(r, 20);
+    r.triangles = 1234;
+    const PhaseSample s = phaseSample(r, 20, 35);
     EXPECT_DOUBLE_EQ(s.finishMs, 7);
+    EXPECT_DOUBLE_EQ(s.cpuMs, 35);
+    EXPECT_EQ(s.triangles, 1234u);
     EXPECT_EQ(s.uploads, 3u);
     EXPECT_DOUBLE_EQ(phaseSample(r, 5).finishMs, 0) << "never negative";
 }
