@@ -176,7 +176,7 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
                 // The LUT index is a per-layer constant baked in by the generator: llvmpipe
                 // runs both sides of a branch under a mask, so a run-time `if (k == ...)` chain
                 // sampled every LUT for every data layer (docs/terrain.md §6).
-                for (int k = lutIndexOf(desc, i); k >= 0 && k < desc.lutCount; k = -1) {
+                if (const int k = lutIndexOf(desc, i); k >= 0 && k < desc.lutCount) {
                     s << "        {\n"
                       << "            vec4 c = texture(uLut" << k << ", vec2(lutCoord(v, uLutDomain"
                       << k << ", uLutSize" << k << "), 0.5));\n"
