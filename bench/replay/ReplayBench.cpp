@@ -10,6 +10,7 @@
 //   Without SCENARIO: scenarios/demo/rainier.json. --anuga imports the SWW's bed and depth
 //   into a temporary store and replays it at --rate (default 10) as well.
 #include "runtime/anim/ScenarioClock.h"
+#include "bench/common/PhaseTimes.h"
 #include "runtime/app/FrameStats.h"
 #include "runtime/app/Session.h"
 #include "runtime/core/Clock.h"
@@ -117,6 +118,7 @@ nlohmann::json replay(const std::string& scenario, int w, int h, double seconds,
     r["warmup_seconds"] = wall.now() - warm0;
 
     std::vector<double> ms;
+    std::vector<bench::PhaseSample> phases;
     int missing = 0, held = 0, hits = 0, steps = 0, maxDepth = 0, wraps = 0;
     std::int32_t lastShown = -1;
     const double start = wall.now();
@@ -129,13 +131,15 @@ nlohmann::json replay(const std::string& scenario, int w, int h, double seconds,
         const auto step = clock.advance(dt, ready);
         wraps += step.wrapped;
         s.setPlayback(scene::playbackOf(clock));
-        const double t0 = wall.now();
+        const double t0 = wall.now(), cpu0 = bench::processCpuMs();
         app::FrameRecord rec = s.drawFrame(cameraAt(step.time), step.time, w, h);
         glFinish();
         rec.frameMs = (wall.now() - t0) * 1000.0;
+        const double cpuMs = bench::processCpuMs() - cpu0;
         // As play does: the tiles of the view the camera path reaches in two seconds.
         s.terrain().prefetch(cameraAt(clock.predict(2.0)));
         ms.push_back(rec.frameMs);
+        phases.push_back(bench::phaseSample(rec, rec.frameMs, cpuMs));
         const auto& f = s.terrain().frameInfo();
         missing += f.sequenceTilesMissing > 0;
         held += f.holdingSequence;
@@ -150,6 +154,7 @@ nlohmann::json replay(const std::string& scenario, int w, int h, double seconds,
     r["frames"] = ms.size();
     r["fps"] = double(ms.size()) / std::max(1e-9, wall.now() - start);
     r["frame_ms"] = {{"p50", p50}, {"p95", app::percentile(ms, 95)}, {"p99", p99}};
+    r.update(bench::phaseReport(phases));
     r["p99_over_median"] = p99 / std::max(1e-9, p50);
     r["p99_within_1_5x_median"] = p99 <= 1.5 * p50;
     r["frames_with_missing_sequence_tiles"] = missing;

@@ -24,6 +24,13 @@ struct FrameRecord {
     std::uint32_t mappingsActive = 0;         ///< projective mappings evaluated
     std::uint32_t mappingsCulledFrustum = 0;  ///< outside the view frustum
     std::uint32_t mappingsCulledSize = 0;     ///< screen-space size below the threshold
+    // Main-thread time per phase of drawFrame() (ms; the rasterizer's share lands in whatever
+    // waits for it: glFinish / swap). Feeds the benchmarks' per-phase figures.
+    double updateMs = 0;   ///< select + drain completions + uploads
+    double uploadMs = 0;   ///< of updateMs: GPU uploads of arrived tiles
+    std::uint32_t uploads = 0;
+    double drawMs = 0;     ///< terrain draw submission (vertex work, binning, shader variants)
+    double overlayMs = 0;  ///< overlays
 };
 
 /** @brief Percentile by linear interpolation between closest ranks (p in [0,100]). */

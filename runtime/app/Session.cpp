@@ -2,6 +2,7 @@
 #include "runtime/app/SolarLighting.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 
@@ -132,7 +133,13 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     glViewport(0, 0, width, height);
     glClearColor(0.62f, 0.71f, 0.80f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    using PhaseClock = std::chrono::steady_clock;
+    const auto msSince = [](PhaseClock::time_point t) {
+        return std::chrono::duration<double, std::milli>(PhaseClock::now() - t).count();
+    };
+    const auto tUpdate = PhaseClock::now();
     mScene->update(camera, time, mPlayback);
+    const double updateMs = msSince(tUpdate);
 
     render::TerrainStyle style;
     double az = sc.lighting.sunAzimuth, alt = sc.lighting.sunAltitude;
@@ -163,8 +170,12 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
         if (l.enabled && (l.kind == config::LayerKind::Topographic || l.kind == config::LayerKind::Normals))
             style.geometryLighting = 0.0f;
     style.tauTex = float(sc.terrain.tauTex);
+    const auto tDraw = PhaseClock::now();
     mScene->draw(camera, style);
+    const double drawMs = msSince(tDraw);
+    const auto tOverlay = PhaseClock::now();
     drawOverlays(time, width, height);
+    const double overlayMs = msSince(tOverlay);
 
     const auto& f = mScene->frameInfo();
     FrameRecord r;
@@ -181,6 +192,11 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     r.mappingsActive = f.mappingsActive;
     r.mappingsCulledFrustum = f.mappingsCulledFrustum;
     r.mappingsCulledSize = f.mappingsCulledSize;
+    r.updateMs = updateMs;
+    r.uploadMs = f.uploadMs;
+    r.uploads = f.uploads;
+    r.drawMs = drawMs;
+    r.overlayMs = overlayMs;
     return r;
 }
 

@@ -42,6 +42,17 @@ float lensMask(vec4 lens, vec2 rotation, float softEdge, vec2 p) {
 
 }  // namespace
 
+int lutIndexOf(const CompositeProgramDesc& desc, int layer) {
+    if (layer < 0 || layer >= int(desc.layers.size())) return -1;
+    const auto scalar = [](const CompositeLayer& l) {
+        return l.kind == LayerKind::Data || l.kind == LayerKind::Sequence;
+    };
+    if (!scalar(desc.layers[std::size_t(layer)])) return -1;
+    int rank = 0;
+    for (int i = 0; i < layer; ++i) rank += scalar(desc.layers[std::size_t(i)]) ? 1 : 0;
+    return rank;
+}
+
 int textureUnitsNeeded(const CompositeProgramDesc& desc) {
     int units = 1 + desc.lutCount;  // elevation LUT + transfer-function LUTs
     for (const auto& l : desc.layers) units += l.kind == LayerKind::Sequence ? 2 : 1;
@@ -111,9 +122,11 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
     s << "\nvoid main() {\n"
          "    if (any(lessThan(vScenePos, uClip.xy)) || any(greaterThan(vScenePos, uClip.zw))) "
          "discard;\n"
-         "    vec3 C = mix(uBaseColor.rgb, texture(uElevLut, vec2(lutCoord(vElevation, "
-         "uElevLutDomain, uElevLutSize), 0.5)).rgb, uElevLutWeight);\n"
-         "    vec3 background = C;\n";
+         << (desc.elevationTint
+                 ? "    vec3 C = mix(uBaseColor.rgb, texture(uElevLut, vec2(lutCoord(vElevation, "
+                   "uElevLutDomain, uElevLutSize), 0.5)).rgb, uElevLutWeight);\n"
+                 : "    vec3 C = uBaseColor.rgb;\n")
+         << "    vec3 background = C;\n";
     // Lens masks first: visibility lenses gate whole layers.
     for (std::size_t j = 0; j < desc.lenses.size(); ++j)
         s << "    float lens" << j << " = uLensParam" << j << ".w * lensMask(uLens" << j
@@ -166,10 +179,11 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
                 }
                 s << "    vec4 L" << i << " = vec4(0.0);\n"
                   << "    {\n        float v = d" << i << ".r / max(d" << i << ".g, 1e-6);\n";
-                // The LUT index is a per-layer constant baked in by the generator.
-                s << "        int k = int(uLayerParam" << i << ".z + 0.5);\n";
-                for (int k = 0; k < desc.lutCount; ++k) {
-                    s << "        if (k == " << k << ") {\n"
+                // The LUT index is a per-layer constant baked in by the generator: llvmpipe
+                // runs both sides of a branch under a mask, so a run-time `if (k == ...)` chain
+                // sampled every LUT for every data layer (docs/terrain.md §6).
+                if (const int k = lutIndexOf(desc, i); k >= 0 && k < desc.lutCount) {
+                    s << "        {\n"
                       << "            vec4 c = texture(uLut" << k << ", vec2(lutCoord(v, uLutDomain"
                       << k << ", uLutSize" << k << "), 0.5));\n"
                       << "            if (v < uLutDomain" << k << ".x && uLutBelow" << k

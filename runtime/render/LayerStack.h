@@ -73,6 +73,11 @@ struct CompositeProgramDesc {
      * (data array, LUT array); block "Mappings" (see render/MappingSet).
      */
     int mappingCapacity = 0;
+    /**
+     * @brief false: the base colour is uBaseColor alone and uElevLutWeight is ignored, which
+     * saves the elevation LUT fetch per pixel (llvmpipe samples it even at weight 0).
+     */
+    bool elevationTint = true;
 };
 
 /**
@@ -95,5 +100,12 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc, in
 
 /** @brief Texture units the program needs (layers, second frames, LUTs, lighting). */
 int textureUnitsNeeded(const CompositeProgramDesc& desc);
+
+/**
+ * @brief The LUT (uLut[k]) of layer `layer`: its rank among the Data/Sequence layers, baked
+ * into the generated shader as a constant; -1 for other kinds or an index out of range. The
+ * program samples no LUT for a layer whose rank is >= lutCount (its colour stays transparent).
+ */
+int lutIndexOf(const CompositeProgramDesc& desc, int layer);
 
 }  // namespace kiosk::render

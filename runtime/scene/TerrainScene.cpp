@@ -246,6 +246,9 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
         desc.lenses.push_back(cl);
     }
 
+    // The scene's elevation LUT is a flat grey and Session draws with elevationLutWeight 0
+    // (hypsometric tint comes from data layers): skip that fetch per pixel.
+    desc.elevationTint = false;
     s->mDesc = desc;
     s->mMaxTextureUnits = caps.maxTextureUnits;
     if (Diagnostics d = s->setupMappings(caps); d.hasErrors()) return d;
@@ -406,6 +409,7 @@ void TerrainScene::update(const math::Camera& camera, double time) {
     mBudget.beginFrame();
     releaseEvicted();
     drainCompletions();
+    mFrame.uploadMs = mBudget.msUsed();
 
     bool reselect = false;
     std::vector<anim::FrameBracket> wanted(mLayers.size());

@@ -71,6 +71,7 @@ struct SceneFrameInfo {
     std::uint32_t mappingsCulledFrustum = 0;  ///< rectangle outside the view frustum
     std::uint32_t mappingsCulledSize = 0;     ///< screen-space size rho below the threshold
     std::uint32_t mappingsOverCapacity = 0;   ///< active but beyond the uniform block
+    double uploadMs = 0;                   ///< GPU uploads (and evicted releases) this frame
 };
 
 /** @brief A transfer function ready for the GPU and the legend. */
