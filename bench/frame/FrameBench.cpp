@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "bench/common/PhaseTimes.h"
+#include "bench/common/HeadlessGl.h"
 #include "runtime/app/FrameStats.h"
 #include "runtime/app/Session.h"
 #include "runtime/core/Clock.h"
@@ -126,15 +127,9 @@ int main(int argc, char** argv) {
             }
         }
     }
-    platform::DisplayOptions dopts;
-    dopts.kind = platform::DisplayKind::Headless;
-    auto display = platform::createDisplay(dopts);
-    if (!display) {
-        std::fprintf(stderr, "%s", display.diagnostics.format().c_str());
-        return 3;
-    }
-    auto caps = gl::initContext();
-    if (!caps) return 3;
+    auto headless = bench::openHeadlessGl();
+    if (!headless) return 3;
+    const gl::Caps* caps = &headless->caps;
     nlohmann::json out;
     out["benchmark"] = "frame";
     out["scenario"] = scenario;

@@ -6,6 +6,7 @@
 //
 // usage: bench-mappings [SCENARIO] [--sizes 1280x720,1920x1080] [--frames N] [--counts 1,4,...]
 //        (SCENARIO defaults to scenarios/mappings/common.json; run from the repository root)
+#include "bench/common/HeadlessGl.h"
 #include "runtime/app/FrameStats.h"
 #include "runtime/app/Session.h"
 #include "runtime/core/Clock.h"
@@ -132,15 +133,9 @@ int main(int argc, char** argv) {
         }
     }
     const auto atlas = std::filesystem::absolute("data/mappings/symbols.png");
-    platform::DisplayOptions dopts;
-    dopts.kind = platform::DisplayKind::Headless;
-    auto display = platform::createDisplay(dopts);
-    if (!display) {
-        std::fprintf(stderr, "%s", display.diagnostics.format().c_str());
-        return 3;
-    }
-    auto caps = gl::initContext();
-    if (!caps) return 3;
+    auto headless = bench::openHeadlessGl();
+    if (!headless) return 3;
+    const gl::Caps* caps = &headless->caps;
     // The view of the symbols scenario: about 30 km of terrain across, all mappings inside.
     const math::Viewpoint view{{596000, 5181000, 1200}, 0, -50, 36000};
     const glm::dvec2 centre(596000, 5183000);

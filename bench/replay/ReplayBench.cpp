@@ -11,6 +11,7 @@
 //   into a temporary store and replays it at --rate (default 10) as well.
 #include "runtime/anim/ScenarioClock.h"
 #include "bench/common/PhaseTimes.h"
+#include "bench/common/HeadlessGl.h"
 #include "runtime/app/FrameStats.h"
 #include "runtime/app/Session.h"
 #include "runtime/core/Clock.h"
@@ -222,15 +223,9 @@ int main(int argc, char** argv) {
         }
     }
     if (scenarios.empty()) scenarios.push_back("scenarios/demo/rainier.json");
-    platform::DisplayOptions dopts;
-    dopts.kind = platform::DisplayKind::Headless;
-    auto display = platform::createDisplay(dopts);
-    if (!display) {
-        std::fprintf(stderr, "%s", display.diagnostics.format().c_str());
-        return 3;
-    }
-    auto caps = gl::initContext();
-    if (!caps) return 3;
+    auto headless = bench::openHeadlessGl();
+    if (!headless) return 3;
+    const gl::Caps* caps = &headless->caps;
 
     nlohmann::json out;
     out["benchmark"] = "replay";

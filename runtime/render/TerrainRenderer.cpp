@@ -191,13 +191,7 @@ void TerrainRenderer::draw(const GpuMesh& mesh, const glm::dvec3& origin, bool f
 void TerrainRenderer::draw(const GpuMesh& mesh, const glm::dvec3& origin, bool fromAncestor,
                            const glm::dvec2& clipMin, const glm::dvec2& clipMax) {
     if (!mCamera || !mesh.valid()) return;
-    const glm::dvec2 o(mSceneOrigin);
-    glUniform4f(mLocClip, float(clipMin.x - o.x), float(clipMin.y - o.y), float(clipMax.x - o.x),
-                float(clipMax.y - o.y));
-    const glm::mat4 mvp(mProjection * mCamera->view(origin));
-    glUniformMatrix4fv(mLocMvp, 1, GL_FALSE, glm::value_ptr(mvp));
-    const glm::dvec3 rel = origin - mSceneOrigin;
-    glUniform3f(mLocOrigin, float(rel.x), float(rel.y), float(origin.z));
+    setTileUniforms(origin, clipMin, clipMax);
     mesh.draw();
     ++mCounters.tilesDrawn;
     ++mCounters.drawCalls;
