@@ -9,9 +9,12 @@
 #include "runtime/render/TerrainRenderer.h"
 #include "tests/support/EglTestContext.h"
 #include "tests/support/MeshFixtures.h"
+#include "tests/support/PixelAssert.h"
 
 namespace kiosk::render {
 namespace {
+
+using test::dn;
 
 constexpr int kSize = 32;
 const glm::vec3 kBase(0.2f, 0.4f, 0.6f);
@@ -65,25 +68,10 @@ protected:
         return makeRgbaTexture(2, 2, px, false);
     }
 
-    static glm::ivec3 dn(glm::vec3 c) {
-        return glm::ivec3(std::lround(std::clamp(c.r, 0.0f, 1.0f) * 255.0f),
-                          std::lround(std::clamp(c.g, 0.0f, 1.0f) * 255.0f),
-                          std::lround(std::clamp(c.b, 0.0f, 1.0f) * 255.0f));
-    }
-
     std::unique_ptr<gl::RenderTarget> mTarget;
     GpuMesh mMesh;
     math::Camera mCamera;
 };
-
-#define EXPECT_DN_NEAR(actual, expected)                                              \
-    do {                                                                              \
-        auto a_ = (actual);                                                           \
-        auto e_ = (expected);                                                         \
-        for (int c_ = 0; c_ < 3; ++c_)                                                \
-            EXPECT_LE(std::abs(a_[c_] - e_[c_]), 1)                                   \
-                << "channel " << c_ << ": got " << a_[c_] << " expected " << e_[c_];  \
-    } while (0)
 
 TEST_F(LayerCompositingGLTest, BaseColourOnly) {
     auto r = TerrainRenderer::create();
