@@ -171,6 +171,48 @@ std::vector<std::string> leftovers(const fs::path& dir) {
     return out;
 }
 
+/** @brief A SWW mesh as the tests read it independently of the importer (netCDF directly). */
+struct SwwTestMesh {
+    std::vector<double> x, y;  ///< relative to (xll, yll)
+    std::vector<int> tri;
+    double xll = 0, yll = 0;
+
+    /**
+     * @brief Linear interpolation of per-vertex values `value(i)` at (cx, cy) (mesh-relative),
+     * from the first triangle containing the point; NaN outside the mesh.
+     */
+    template <class Value>
+    double valueAt(double cx, double cy, Value value) const {
+        for (std::size_t t = 0; t < tri.size() / 3; ++t) {
+            const int a = tri[t * 3], b = tri[t * 3 + 1], c = tri[t * 3 + 2];
+            const double det = (y[b] - y[c]) * (x[a] - x[c]) + (x[c] - x[b]) * (y[a] - y[c]);
+            const double l1 = ((y[b] - y[c]) * (cx - x[c]) + (x[c] - x[b]) * (cy - y[c])) / det;
+            const double l2 = ((y[c] - y[a]) * (cx - x[c]) + (x[a] - x[c]) * (cy - y[c])) / det;
+            const double l3 = 1 - l1 - l2;
+            if (l1 < -1e-9 || l2 < -1e-9 || l3 < -1e-9) continue;
+            return l1 * value(a) + l2 * value(b) + l3 * value(c);
+        }
+        return std::nan("");
+    }
+};
+
+SwwTestMesh readSwwTestMesh(int ncid, std::size_t points, std::size_t volumes) {
+    SwwTestMesh m;
+    m.x.resize(points);
+    m.y.resize(points);
+    m.tri.resize(volumes * 3);
+    int v;
+    nc_inq_varid(ncid, "x", &v);
+    nc_get_var_double(ncid, v, m.x.data());
+    nc_inq_varid(ncid, "y", &v);
+    nc_get_var_double(ncid, v, m.y.data());
+    nc_inq_varid(ncid, "volumes", &v);
+    nc_get_var_int(ncid, v, m.tri.data());
+    nc_get_att_double(ncid, NC_GLOBAL, "xllcorner", &m.xll);
+    nc_get_att_double(ncid, NC_GLOBAL, "yllcorner", &m.yll);
+    return m;
+}
+
 std::string fileBytes(const fs::path& p) {
     std::ifstream f(p, std::ios::binary);
     std::stringstream s;
@@ -623,19 +665,13 @@ TEST(ImportSequence, AnugaSwwDepthMatchesStageMinusElevation) {
     nc_inq_dimlen(id, dim, &nv);
     nc_inq_dimid(id, "number_of_timesteps", &dim);
     nc_inq_dimlen(id, dim, &nt);
-    std::vector<double> x(np), y(np), time(nt);
-    std::vector<int> tri(nv * 3);
-    nc_inq_varid(id, "x", &v);
-    nc_get_var_double(id, v, x.data());
-    nc_inq_varid(id, "y", &v);
-    nc_get_var_double(id, v, y.data());
-    nc_inq_varid(id, "volumes", &v);
-    nc_get_var_int(id, v, tri.data());
+    const SwwTestMesh mesh = readSwwTestMesh(id, np, nv);
+    const auto &x = mesh.x, &y = mesh.y;
+    const auto& tri = mesh.tri;
+    const double xll = mesh.xll, yll = mesh.yll;
+    std::vector<double> time(nt);
     nc_inq_varid(id, "time", &v);
     nc_get_var_double(id, v, time.data());
-    double xll = 0, yll = 0;
-    nc_get_att_double(id, NC_GLOBAL, "xllcorner", &xll);
-    nc_get_att_double(id, NC_GLOBAL, "yllcorner", &yll);
     ASSERT_EQ(s->frameTimes.size(), nt);
     for (std::size_t i = 0; i < nt; ++i) EXPECT_DOUBLE_EQ(s->frameTimes[i], time[i]);
     const int step = int(nt) - 1;
@@ -658,19 +694,9 @@ TEST(ImportSequence, AnugaSwwDepthMatchesStageMinusElevation) {
         const std::size_t vi = std::size_t(tri[t0 * 3]);
         const int gx = int((x[vi] + xll - g.minX) / p), gy = int((g.maxY - (y[vi] + yll)) / p);
         const double cx = g.minX + (gx + 0.5) * p - xll, cy = g.maxY - (gy + 0.5) * p - yll;
-        double expected = std::nan("");
-        for (std::size_t t = 0; t < nv; ++t) {
-            const int a = tri[t * 3], b = tri[t * 3 + 1], c = tri[t * 3 + 2];
-            const double det = (y[b] - y[c]) * (x[a] - x[c]) + (x[c] - x[b]) * (y[a] - y[c]);
-            const double l1 = ((y[b] - y[c]) * (cx - x[c]) + (x[c] - x[b]) * (cy - y[c])) / det;
-            const double l2 = ((y[c] - y[a]) * (cx - x[c]) + (x[a] - x[c]) * (cy - y[c])) / det;
-            const double l3 = 1 - l1 - l2;
-            if (l1 < -1e-9 || l2 < -1e-9 || l3 < -1e-9) continue;
-            expected =
-                l1 * (stage[a] - elev[a]) + l2 * (stage[b] - elev[b]) + l3 * (stage[c] - elev[c]);
-            if (expected < 0.001) expected = 0;
-            break;
-        }
+        double expected = mesh.valueAt(
+            cx, cy, [&](int i) { return double(stage[std::size_t(i)] - elev[std::size_t(i)]); });
+        if (expected < 0.001) expected = 0;  // dry below the import's wet threshold (NaN stays)
         if (std::isnan(expected)) continue;
         auto tile = r->readSequenceFrame("flood", step, TileId{L, gx / 256, gy / 256});
         ASSERT_TRUE(tile.ok()) << tile.diagnostics.format();
@@ -727,15 +753,11 @@ TEST(ImportElevation, AnugaSwwBedSharesTheDepthGrid) {
     nc_inq_dimlen(id, dim, &np);
     nc_inq_dimid(id, "number_of_volumes", &dim);
     nc_inq_dimlen(id, dim, &nv);
-    std::vector<double> x(np), y(np);
+    const SwwTestMesh mesh = readSwwTestMesh(id, np, nv);
+    const auto &x = mesh.x, &y = mesh.y;
+    const auto& tri = mesh.tri;
+    const double xll = mesh.xll, yll = mesh.yll;
     std::vector<float> z(np);
-    std::vector<int> tri(nv * 3);
-    nc_inq_varid(id, "x", &v);
-    nc_get_var_double(id, v, x.data());
-    nc_inq_varid(id, "y", &v);
-    nc_get_var_double(id, v, y.data());
-    nc_inq_varid(id, "volumes", &v);
-    nc_get_var_int(id, v, tri.data());
     nc_inq_varid(id, "elevation", &v);
     int nd = 0;
     nc_inq_varndims(id, v, &nd);
@@ -744,9 +766,6 @@ TEST(ImportElevation, AnugaSwwBedSharesTheDepthGrid) {
         nc_get_vara_float(id, v, start, count, z.data());
     else
         nc_get_var_float(id, v, z.data());
-    double xll = 0, yll = 0;
-    nc_get_att_double(id, NC_GLOBAL, "xllcorner", &xll);
-    nc_get_att_double(id, NC_GLOBAL, "yllcorner", &yll);
     nc_close(id);
     const float zMin = *std::min_element(z.begin(), z.end());
     const float zMax = *std::max_element(z.begin(), z.end());
@@ -760,17 +779,8 @@ TEST(ImportElevation, AnugaSwwBedSharesTheDepthGrid) {
         const std::size_t vi = std::size_t(tri[(rng() % nv) * 3]);
         const int gx = int((x[vi] + xll - g.minX) / p), gy = int((g.maxY - (y[vi] + yll)) / p);
         const double cx = g.minX + (gx + 0.5) * p - xll, cy = g.maxY - (gy + 0.5) * p - yll;
-        double expected = std::nan("");
-        for (std::size_t t = 0; t < nv; ++t) {
-            const int a = tri[t * 3], b = tri[t * 3 + 1], c = tri[t * 3 + 2];
-            const double det = (y[b] - y[c]) * (x[a] - x[c]) + (x[c] - x[b]) * (y[a] - y[c]);
-            const double l1 = ((y[b] - y[c]) * (cx - x[c]) + (x[c] - x[b]) * (cy - y[c])) / det;
-            const double l2 = ((y[c] - y[a]) * (cx - x[c]) + (x[a] - x[c]) * (cy - y[c])) / det;
-            const double l3 = 1 - l1 - l2;
-            if (l1 < -1e-9 || l2 < -1e-9 || l3 < -1e-9) continue;
-            expected = l1 * z[a] + l2 * z[b] + l3 * z[c];
-            break;
-        }
+        const double expected =
+            mesh.valueAt(cx, cy, [&](int i) { return double(z[std::size_t(i)]); });
         if (std::isnan(expected)) continue;
         auto tile = r->readElevation("elevation", TileId{L, gx / 256, gy / 256});
         ASSERT_TRUE(tile.ok()) << tile.diagnostics.format();
@@ -1015,9 +1025,8 @@ TEST(ImportTopographic, NormalMapEqualsNormalMapOfTheStoredElevation) {
     const int t = g.levels.back().tileWidth, L = g.maxLevel();
     const int W = g.levels.back().matrixWidth * t, H = g.levels.back().matrixHeight * t;
     const std::vector<float> dem = finestArray(*r, "elevation", W, H);
-    topo::RasterView v = topo::RasterView::window(dem.data(), W, H, W, 0, 0, W, H,
-                                                  g.levels.back().pixelXSize,
-                                                  g.levels.back().pixelYSize);
+    topo::RasterView v = topo::RasterView::window(
+        dem.data(), W, H, W, 0, 0, W, H, g.levels.back().pixelXSize, g.levels.back().pixelYSize);
     std::vector<std::uint8_t> want(std::size_t(W) * std::size_t(H) * 3);
     ASSERT_FALSE(topo::normalMap(v, {}, want.data(), W * 3).hasErrors());
     int compared = 0, nodata = 0, mismatched = 0;
@@ -1028,8 +1037,9 @@ TEST(ImportTopographic, NormalMapEqualsNormalMapOfTheStoredElevation) {
             for (int y = 0; y < t; ++y)
                 for (int x = 0; x < t; ++x) {
                     const std::uint8_t* p = &tile->rgba[std::size_t(y * t + x) * 4];
-                    const std::uint8_t* q =
-                        &want[(std::size_t(row * t + y) * std::size_t(W) + std::size_t(col * t + x)) * 3];
+                    const std::uint8_t* q = &want[(std::size_t(row * t + y) * std::size_t(W) +
+                                                   std::size_t(col * t + x)) *
+                                                  3];
                     const bool valid = q[2] != 0;
                     if (!valid) {
                         ++nodata;
