@@ -1,5 +1,7 @@
 #include "config/DocumentLoader.h"
 
+#include "config/Limits.h"
+#include "config/PathPolicy.h"
 #include "config/ScenarioReader.h"
 
 #include <algorithm>
@@ -37,14 +39,18 @@ public:
         failed = true;
         // Characters read up to and including the offending one (the token's last character).
         offset = position > 0 ? position - 1 : 0;
-        token = lastToken;
-        message = ex.what();
+        (void)lastToken;
+        // The message quotes the whole token read (an unclosed comment: the rest of the file);
+        // keep its head and tail only, which is all cleanParseMessage shows.
+        const std::string_view what = ex.what();
+        message = what.size() <= 1024 ? std::string(what)
+                                      : std::string(what.substr(0, 512)) +
+                                            std::string(what.substr(what.size() - 512));
         return false;
     }
 
     bool failed = false;
     std::size_t offset = 0;
-    std::string token;
     std::string message;
 };
 
@@ -62,15 +68,40 @@ TextIndex::Pos positionOf(std::string_view text, std::size_t offset) {
 }
 
 // "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error ..." ->
-// "syntax error ..."; the position is reported separately in our own format.
+// "syntax error ..."; the position is reported separately in our own format. nlohmann echoes
+// the token it stopped in ("last read: '...'"), which for an unclosed comment or string is the
+// rest of the file and for a non-JSON include is that file's content: keep a short fragment.
 std::string cleanParseMessage(const std::string& what) {
+    std::string out = what;
     const auto column = what.find("column ");
-    if (column != std::string::npos) {
-        const auto colon = what.find(": ", column);
-        if (colon != std::string::npos) return what.substr(colon + 2);
-    }
     const auto bracket = what.find("] ");
-    return bracket != std::string::npos ? what.substr(bracket + 2) : what;
+    if (column != std::string::npos && what.find(": ", column) != std::string::npos)
+        out = what.substr(what.find(": ", column) + 2);
+    else if (bracket != std::string::npos)
+        out = what.substr(bracket + 2);
+    constexpr std::size_t kFragment = 24;
+    const std::string lastRead = "last read: '";
+    const auto lr = out.find(lastRead);
+    if (lr != std::string::npos) {
+        const std::size_t start = lr + lastRead.size();
+        const std::size_t end = out.rfind('\'');
+        if (end != std::string::npos && end > start && end - start > kFragment) {
+            std::size_t cut = start + kFragment;
+            while (cut > start && (static_cast<unsigned char>(out[cut]) & 0xC0) == 0x80) --cut;
+            out = out.substr(0, cut) + "\u2026" + out.substr(end);
+        }
+    }
+    return out;
+}
+
+// A UTF-16 or UTF-32 file starts with a byte-order mark or has NUL bytes in its first
+// characters; JSON parsers then report a baffling "invalid literal" at 1:1.
+bool looksUtf16or32(std::string_view text) {
+    if (text.size() >= 2 &&
+        ((text[0] == '\xFF' && text[1] == '\xFE') || (text[0] == '\xFE' && text[1] == '\xFF')))
+        return true;
+    const std::size_t n = std::min<std::size_t>(text.size(), 8);
+    return n >= 2 && text.substr(0, n).find('\0') != std::string_view::npos;
 }
 
 int originOf(const OriginMap& origin, std::string_view pointer) {
@@ -132,7 +163,8 @@ struct SourceFile {
 
 class Loader {
 public:
-    explicit Loader(Diagnostics& diags) : mDiags(diags) {}
+    Loader(Diagnostics& diags, const std::filesystem::path& root)
+        : mDiags(diags), mRoots(allowedRoots(root)) {}
 
     struct Doc {
         json value;
@@ -142,6 +174,17 @@ public:
     std::optional<Doc> load(std::string_view text, const std::filesystem::path& name) {
         const int self = int(mFiles.size());
         mFiles.push_back({name, {}});
+        mTotalBytes += text.size();
+        if (looksUtf16or32(text)) {
+            auto& e = mDiags.error("SCENARIO_ENCODING", name.string(), "",
+                                   "the file is UTF-16 or UTF-32; scenarios are UTF-8");
+            e.line = 1;
+            e.column = 1;
+            e.hint = "save it as UTF-8, e.g. iconv -f UTF-16 -t UTF-8";
+            return std::nullopt;
+        }
+        // A UTF-8 byte-order mark is harmless: skip it, so columns stay those an editor shows.
+        if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
         TextIndex index = indexJsonText(text, kMaxScenarioDepth);
         if (!index.complete && index.maxDepth > kMaxScenarioDepth) {
             auto& e =
@@ -192,10 +235,12 @@ public:
             }
             bool includesOk = true;
             for (const auto& [rel, ptr] : paths) {
-                if (auto sub = include(self, name, rel, ptr))
+                if (auto sub = include(self, name, rel, ptr)) {
                     merge(doc.value, doc.origin, sub->value, sub->origin, "");
-                else
+                } else {
                     includesOk = false;
+                    if (mOverLimit) break;  // one message for an include bomb, not thousands
+                }
             }
             // A missing include would cascade into "missing stores"-style noise: stop here.
             if (!includesOk) return std::nullopt;
@@ -228,7 +273,22 @@ private:
 
     std::optional<Doc> include(int self, const std::filesystem::path& from, const std::string& rel,
                                const std::string& ptr) {
+        if (mOverLimit) return std::nullopt;
         const std::filesystem::path target = (from.parent_path() / rel).lexically_normal();
+        if (auto why = checkContained(target, mRoots)) {
+            error(self, "SCENARIO_PATH", ptr, "included file \"" + rel + "\" " + *why);
+            return std::nullopt;
+        }
+        // Counted before reading: ten includes per level nested eight deep would otherwise be
+        // 10^8 file loads (the limits are in config/Limits.h).
+        if (++mIncludes > kMaxIncludeFiles) {
+            mOverLimit = true;
+            error(self, "SCENARIO_LIMIT", ptr,
+                  "more than " + std::to_string(kMaxIncludeFiles) +
+                      " included files (each inclusion counts)",
+                  "see \"Limits\" in docs/scenario-format.md");
+            return std::nullopt;
+        }
         std::error_code ec;
         std::filesystem::path canon = std::filesystem::weakly_canonical(target, ec);
         if (ec) canon = target;
@@ -245,6 +305,14 @@ private:
                 return std::nullopt;
             }
         }
+        // mStack holds the root and the includes being read: its size is this include's depth.
+        if (int(mStack.size()) > kMaxIncludeDepth) {
+            mOverLimit = true;
+            error(self, "SCENARIO_LIMIT", ptr,
+                  "includes nested deeper than " + std::to_string(kMaxIncludeDepth) + " files",
+                  "see \"Limits\" in docs/scenario-format.md");
+            return std::nullopt;
+        }
         std::string why;
         auto text = readTextFile(target, kMaxScenarioFileBytes, why);
         if (!text) {
@@ -253,13 +321,36 @@ private:
                   "included file \"" + target.string() + "\" " + why);
             return std::nullopt;
         }
-        if (mStack.size() > 32) {
-            error(self, "SCENARIO_INCLUDE_CYCLE", ptr, "includes nested deeper than 32 files");
+        if (mTotalBytes + text->size() > kMaxScenarioTotalBytes) {
+            mOverLimit = true;
+            error(self, "SCENARIO_LIMIT", ptr,
+                  "the scenario and its includes exceed " +
+                      std::to_string(kMaxScenarioTotalBytes >> 20) + " MiB together",
+                  "see \"Limits\" in docs/scenario-format.md");
             return std::nullopt;
         }
         mStack.push_back(canon);
+        const std::size_t firstDiag = mDiags.size();
         auto doc = load(*text, target);
         mStack.pop_back();
+        // A problem inside the include also names where it was included from (one line: hint).
+        if (!doc) {
+            const auto& f = mFiles[std::size_t(self)];
+            std::string includedBy = f.path.string();
+            if (auto it = f.index.values.find(ptr); it != f.index.values.end())
+                includedBy +=
+                    ":" + std::to_string(it->second.line) + ":" + std::to_string(it->second.column);
+            Diagnostics annotated;
+            for (std::size_t i = 0; i < mDiags.size(); ++i) {
+                Diagnostic d = mDiags.items()[i];
+                if (i >= firstDiag && d.file == target.string() &&
+                    d.hint.find("included by ") == std::string::npos)
+                    d.hint +=
+                        (d.hint.empty() ? "" : "; ") + ("included by " + includedBy + " " + ptr);
+                annotated.add(std::move(d));
+            }
+            mDiags = std::move(annotated);
+        }
         return doc;
     }
 
@@ -316,8 +407,12 @@ private:
     }
 
     Diagnostics& mDiags;
+    std::vector<std::filesystem::path> mRoots;  // where included files may be (PathPolicy.h)
     std::vector<SourceFile> mFiles;
     std::vector<std::filesystem::path> mStack;
+    int mIncludes = 0;
+    std::uintmax_t mTotalBytes = 0;
+    bool mOverLimit = false;  // a limit was hit: read nothing more
 };
 
 }  // namespace
@@ -351,7 +446,7 @@ std::optional<std::string> readTextFile(const std::filesystem::path& file, std::
 
 LoadedDocument loadDocument(std::string_view text, const std::filesystem::path& name,
                             Diagnostics& diags) {
-    Loader loader(diags);
+    Loader loader(diags, name);
     auto doc = loader.load(text, name);
     return loader.finish(std::move(doc));
 }

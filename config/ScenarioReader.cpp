@@ -1,6 +1,8 @@
 #include "config/ScenarioReader.h"
 
 #include "config/DocumentLoader.h"
+#include "config/Limits.h"
+#include "config/PathPolicy.h"
 #include "runtime/color/ColorImport.h"
 #include "runtime/core/Assert.h"
 #include "runtime/core/Strings.h"
@@ -543,7 +545,11 @@ private:
                          "expected a store file path (string), got " + typeName(*it));
                 continue;
             }
-            mS.stores[it.key()] = StoreRef{it.key(), mC.resolve(ptr, it->get<std::string>()), ptr};
+            auto path = mC.resolve(ptr, it->get<std::string>());
+            if (contained(path, ptr))
+                mS.stores[it.key()] = StoreRef{it.key(), path, ptr};
+            else
+                mRefusedStores.insert(it.key());  // already reported: no "unknown store" echo
         }
     }
 
@@ -804,6 +810,7 @@ private:
     }
 
     bool fileExists(const std::filesystem::path& file, const std::string& ptr) {
+        if (!contained(file, ptr)) return false;
         std::error_code ec;
         if (std::filesystem::is_regular_file(file, ec)) return true;
         mC.error(
@@ -1153,7 +1160,7 @@ private:
     void reference(const std::string& ptr, const std::string& what, const std::string& name,
                    const std::vector<std::string>& candidates) {
         // Without a "stores" object that error already says it all; no per-reference echo.
-        if (what == "store" && !mStoresGiven) return;
+        if (what == "store" && (!mStoresGiven || mRefusedStores.count(name))) return;
         if (std::find(candidates.begin(), candidates.end(), name) != candidates.end()) return;
         auto& e =
             mC.error("SCENARIO_UNKNOWN_REFERENCE", ptr, "unknown " + what + " " + quote(name));
@@ -1250,6 +1257,15 @@ private:
         checkKeyOrder();
     }
 
+    // The path rule of config/PathPolicy.h; the file's name is quoted only as given.
+    bool contained(const std::filesystem::path& file, const std::string& ptr) {
+        if (mRoots.empty()) mRoots = allowedRoots(mS.sourceFiles.front());
+        auto why = checkContained(file, mRoots);
+        if (!why) return true;
+        mC.error("SCENARIO_PATH", ptr, "file " + quote(file.string()) + " " + *why);
+        return false;
+    }
+
 public:
     std::vector<std::filesystem::path> mFiles;
     std::vector<std::string> mDeclaredTransfers;
@@ -1259,6 +1275,8 @@ private:
     Scenario& mS;
     std::vector<std::pair<std::string, std::vector<std::pair<TimeSpec, std::string>>>> mKeyLists;
     bool mStoresGiven = false;
+    std::vector<std::filesystem::path> mRoots;
+    std::set<std::string> mRefusedStores;
 };
 
 Result<Scenario> build(LoadedDocument doc, Diagnostics diags,
@@ -1270,6 +1288,11 @@ Result<Scenario> build(LoadedDocument doc, Diagnostics diags,
         return diags;
     }
     s.sourceMap = std::move(doc.sourceMap);
+    checkLimits(doc.value, s.sourceMap, diags);
+    if (diags.hasErrors()) {
+        if (filesRead) *filesRead = s.sourceFiles;
+        return diags;
+    }
     Ctx ctx(s.sourceMap, diags);
     Reader reader(ctx, s);
     if (const auto tfs = doc.value.find("transferFunctions");

@@ -1,8 +1,6 @@
 #include "runtime/app/Cli.h"
 
-#include <cstdio>
-#include <exception>
-
+#include "runtime/app/AllowPath.h"
 #include "runtime/app/ImportCommand.h"
 #include "runtime/app/InfoCommand.h"
 #include "runtime/app/PlayCommand.h"
@@ -11,6 +9,9 @@
 #include "runtime/app/ValidateCommand.h"
 #include "runtime/core/ExitCode.h"
 #include "runtime/core/Strings.h"
+
+#include <cstdio>
+#include <exception>
 
 namespace kiosk::app {
 
@@ -32,6 +33,8 @@ std::string usageText() {
         build or extend a store (a GeoPackage) from GDAL-readable rasters and model output
   validate SCENARIO...
         check scenarios against the schema and their stores
+  play, render and validate also take --allow-path DIR (repeatable): a folder outside the
+        scenario's own that its paths may name (also GEOKIOSK_ALLOW_PATHS=DIR:DIR...)
   info STORE [--json]
         describe a store: layers, CRS, extent, levels, sequences
 
@@ -49,7 +52,12 @@ int dispatch(const std::vector<std::string>& args) {
         return kExitUsage;
     }
     const std::string& cmd = args[0];
-    const std::vector<std::string> rest(args.begin() + 1, args.end());
+    std::vector<std::string> rest(args.begin() + 1, args.end());
+    if (cmd == "play" || cmd == "render" || cmd == "validate") {
+        auto others = takeAllowPathOptions(rest);  // --allow-path DIR (config/PathPolicy.h)
+        if (!others) return kExitUsage;
+        rest = std::move(*others);
+    }
     if (cmd == "-h" || cmd == "--help" || cmd == "help") {
         std::fputs(usageText().c_str(), stdout);
         return kExitOk;

@@ -2,6 +2,7 @@
 
 #include "runtime/core/ExitCode.h"
 #include "runtime/core/TimeParse.h"
+#include "runtime/io/StoreIntegrity.h"
 #include "runtime/io/StoreReader.h"
 
 #include <nlohmann/json.hpp>
@@ -29,14 +30,18 @@ const char* kindName(io::LayerKind k) {
 
 int runInfoCommand(const std::vector<std::string>& args) {
     std::string path;
-    bool json = false;
+    bool json = false, check = false, deep = false;
     for (const auto& a : args) {
         if (a == "--json") {
             json = true;
+        } else if (a == "--check") {
+            check = true;
+        } else if (a == "--deep") {
+            deep = true;
         } else if (a.rfind("--", 0) == 0 || !path.empty()) {
             std::fprintf(stderr,
                          "geokiosk: info: unexpected argument '%s' [CLI_USAGE]\n"
-                         "usage: geokiosk info STORE [--json]\n",
+                         "usage: geokiosk info STORE [--json] [--check [--deep]]\n",
                          a.c_str());
             return kExitUsage;
         } else {
@@ -44,13 +49,25 @@ int runInfoCommand(const std::vector<std::string>& args) {
         }
     }
     if (path.empty()) {
-        std::fprintf(stderr, "usage: geokiosk info STORE [--json]\n");
+        std::fprintf(stderr, "usage: geokiosk info STORE [--json] [--check [--deep]]\n");
+        return kExitUsage;
+    }
+    if (deep && !check) {
+        std::fprintf(stderr, "geokiosk: info: --deep needs --check [CLI_USAGE]\n");
         return kExitUsage;
     }
     auto reader = io::StoreReader::open(path);
     for (const auto& d : reader.diagnostics.items())
         std::fprintf(stderr, "%s\n", d.format().c_str());
     if (!reader) return kExitBadInput;
+    if (check) {
+        // Core and geokiosk tables' invariants; with --deep every tile decoded (StoreIntegrity.h).
+        const Diagnostics problems = io::checkStoreIntegrity(
+            path, deep ? io::IntegrityLevel::Deep : io::IntegrityLevel::Tables);
+        for (const auto& d : problems.items()) std::fprintf(stderr, "%s\n", d.format().c_str());
+        if (problems.hasErrors()) return kExitBadInput;
+        if (!json) std::printf("check: ok%s\n", deep ? " (every tile decoded)" : "");
+    }
     const io::StoreInfo& info = (*reader)->info();
     const io::TileGrid& g = info.grid;
     std::int64_t frameTiles = 0;

@@ -1,16 +1,9 @@
 #include "runtime/app/PlayCommand.h"
 
-#include <chrono>
-#include <algorithm>
-#include <cmath>
-#include <optional>
-#include <cstdio>
-#include <filesystem>
-#include <thread>
-
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
 #include "runtime/app/Report.h"
+#include "runtime/app/ScenarioReloader.h"
 #include "runtime/app/Session.h"
 #include "runtime/app/Signals.h"
 #include "runtime/core/Clock.h"
@@ -20,6 +13,14 @@
 #include "runtime/gl/Context.h"
 #include "runtime/gl/RenderTarget.h"
 #include "runtime/platform/Display.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <thread>
 
 namespace kiosk::app {
 namespace {
@@ -37,16 +38,6 @@ int usage(const std::string& message) {
                  "[--frames N] [--connector NAME] [--drm-device PATH]\n",
                  message.c_str());
     return kExitUsage;
-}
-
-/** Modification stamps of the scenario and everything it includes. */
-std::vector<std::filesystem::file_time_type> stamps(const std::vector<std::filesystem::path>& files) {
-    std::vector<std::filesystem::file_time_type> out;
-    for (const auto& f : files) {
-        std::error_code ec;
-        out.push_back(std::filesystem::last_write_time(f, ec));
-    }
-    return out;
 }
 
 anim::ScenarioClock makeClock(const Session& s) {
@@ -131,9 +122,9 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     installStopSignals();
     RealClock wall;
     anim::ScenarioClock clock = makeClock(*session);
-    auto watched = session->scenario().sourceFiles;
-    auto watchedStamps = stamps(watched);
-    double lastPoll = wall.now(), last = wall.now();
+    // Edits are read and checked on the reloader's thread; this loop only swaps in a result.
+    ScenarioReloader reloader(scenarioPath, session->scenario().sourceFiles, kReloadPollSeconds);
+    double last = wall.now();
     platform::InputState input;
     std::optional<math::Viewpoint> manual;  // set while the user steers the camera
     for (long frame = 0; frameLimit < 0 || frame < frameLimit; ++frame) {
@@ -144,26 +135,21 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         const double dt = now - last;
         last = now;
 
-        if (now - lastPoll >= kReloadPollSeconds) {
-            lastPoll = now;
-            auto current = stamps(watched);
-            if (current != watchedStamps) {
-                watchedStamps = current;
-                auto next = Session::open(scenarioPath, *caps);
-                if (next) {
-                    session = std::move(*next.value);
-                    clock = makeClock(*session);
-                    watched = session->scenario().sourceFiles;
-                    watchedStamps = stamps(watched);
-                    KIOSK_LOG_INFO(kTag, "%s: reloaded", scenarioPath.c_str());
-                } else {
-                    // Keep the last good scenario on screen; say exactly why the edit was refused.
-                    for (const auto& d : next.diagnostics.items())
-                        KIOSK_LOG_ERROR(kTag, "edit rejected, keeping the previous scenario: %s",
-                                        d.format().c_str());
-                    if (const Diagnostic* e = next.diagnostics.firstError())
-                        session->setNotice("scenario edit rejected: " + e->format());
-                }
+        if (auto loaded = reloader.take()) {
+            // The GL half (scene, programs) stays here: it is bounded by the scenario limits.
+            auto next = loaded->ok() ? Session::create(std::move(*loaded->value), *caps)
+                                     : Result<std::unique_ptr<Session>>(loaded->diagnostics);
+            if (next) {
+                session = std::move(*next.value);
+                clock = makeClock(*session);
+                KIOSK_LOG_INFO(kTag, "%s: reloaded", scenarioPath.c_str());
+            } else {
+                // Keep the last good scenario on screen; say exactly why the edit was refused.
+                for (const auto& d : next.diagnostics.items())
+                    KIOSK_LOG_ERROR(kTag, "edit rejected, keeping the previous scenario: %s",
+                                    d.format().c_str());
+                if (const Diagnostic* e = next.diagnostics.firstError())
+                    session->setNotice("scenario edit rejected: " + e->format());
             }
         }
 

@@ -1,17 +1,17 @@
 #include "runtime/app/Session.h"
+
+#include "config/ScenarioReader.h"
+#include "runtime/app/ScenarioStores.h"
 #include "runtime/app/SolarLighting.h"
+#include "runtime/color/Legend.h"
+#include "runtime/core/Log.h"
+#include "runtime/core/Strings.h"
+#include "runtime/io/StoreReader.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
-
-#include "config/MeaningCheck.h"
-#include "config/ScenarioReader.h"
-#include "runtime/color/Legend.h"
-#include "runtime/core/Log.h"
-#include "runtime/core/Strings.h"
-#include "runtime/io/StoreReader.h"
 
 namespace kiosk::app {
 namespace {
@@ -47,33 +47,43 @@ Result<std::unique_ptr<Session>> Session::open(const std::filesystem::path& scen
 Result<std::unique_ptr<Session>> Session::open(
     const std::filesystem::path& scenarioPath, const gl::Caps& caps,
     const std::function<void(config::Scenario&)>& adjust) {
+    auto checked = readChecked(scenarioPath);
+    if (!checked) return checked.diagnostics;
+    for (const auto& d : checked.diagnostics.items())
+        KIOSK_LOG_WARN(kTag, "%s", d.format().c_str());
+    return create(std::move(*checked.value), caps, adjust);
+}
+
+Result<std::unique_ptr<config::Scenario>> Session::readChecked(
+    const std::filesystem::path& scenarioPath) {
     auto scenario = config::readScenario(scenarioPath);
     if (!scenario) return scenario.diagnostics;
-    std::unique_ptr<Session> s(new Session());
-    s->mScenario = std::make_unique<config::Scenario>(std::move(*scenario.value));
+    auto checked = std::make_unique<config::Scenario>(std::move(*scenario.value));
     Diagnostics diags = scenario.diagnostics;  // warnings
-
-    // Meaning checks need every store's metadata.
-    std::map<std::string, std::unique_ptr<io::StoreReader>> readers;
-    for (const auto& [id, ref] : s->mScenario->stores) {
-        auto r = io::StoreReader::open(ref.path);
-        if (!r) {
-            diags.append(r.diagnostics);
-            return diags;
-        }
-        readers[id] = std::move(*r.value);
-    }
-    Diagnostics meaning = config::checkMeaning(*s->mScenario, [&](const std::string& id) {
-        auto it = readers.find(id);
-        return it == readers.end() ? nullptr : &it->second->info();
-    });
-    diags.append(meaning);
+    // Meaning checks need every store's metadata; store errors name the scenario's line.
+    OpenedStores readers;
+    diags.append(openScenarioStores(*checked, readers));
     if (diags.hasErrors()) return diags;
+    return {std::move(checked), std::move(diags)};
+}
+
+Result<std::unique_ptr<Session>> Session::create(
+    std::unique_ptr<config::Scenario> scenario, const gl::Caps& caps,
+    const std::function<void(config::Scenario&)>& adjust) {
+    std::unique_ptr<Session> s(new Session());
+    s->mScenario = std::move(scenario);
     if (adjust) adjust(*s->mScenario);
-    for (const auto& d : diags.items()) KIOSK_LOG_WARN(kTag, "%s", d.format().c_str());
 
     auto scene = scene::TerrainScene::create(*s->mScenario, caps);
-    if (!scene) return scene.diagnostics;
+    if (!scene) {
+        // Renderer errors (e.g. more texture units than this GPU has) still name the scenario.
+        Diagnostics named;
+        for (Diagnostic d : scene.diagnostics.items()) {
+            if (d.file.empty()) d.file = s->mScenario->sourceFiles.front().string();
+            named.add(std::move(d));
+        }
+        return named;
+    }
     s->mScene = std::move(*scene.value);
 
 

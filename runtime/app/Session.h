@@ -31,6 +31,16 @@ public:
     static Result<std::unique_ptr<Session>> open(
         const std::filesystem::path& scenarioPath, const gl::Caps& caps,
         const std::function<void(config::Scenario&)>& adjust);
+    /**
+     * @brief The first half of open(), any thread and no GL: read the scenario and check it
+     * against its stores (play's reload worker runs this off the frame loop).
+     */
+    static Result<std::unique_ptr<config::Scenario>> readChecked(
+        const std::filesystem::path& scenarioPath);
+    /** @brief The second half, render thread: GL resources for a scenario readChecked passed. */
+    static Result<std::unique_ptr<Session>> create(
+        std::unique_ptr<config::Scenario> scenario, const gl::Caps& caps,
+        const std::function<void(config::Scenario&)>& adjust = nullptr);
 
     const config::Scenario& scenario() const noexcept { return *mScenario; }
     scene::TerrainScene& terrain() noexcept { return *mScene; }

@@ -1,10 +1,9 @@
 #include "runtime/app/ValidateCommand.h"
 
-#include "config/MeaningCheck.h"
 #include "config/ScenarioReader.h"
+#include "runtime/app/ScenarioStores.h"
 #include "runtime/core/ExitCode.h"
 #include "runtime/core/Strings.h"
-#include "runtime/io/StoreReader.h"
 
 #include <iostream>
 #include <map>
@@ -16,11 +15,13 @@ namespace kiosk::app {
 namespace {
 
 const char* const kUsage =
-    "usage: geokiosk validate [--no-stores] [--quiet] SCENARIO...\n"
-    "  check scenarios (schema, references, includes) and, unless --no-stores, their stores\n";
+    "usage: geokiosk validate [--no-stores] [--deep] [--quiet] [--allow-path DIR] SCENARIO...\n"
+    "  check scenarios (schema, references, includes) and, unless --no-stores, their stores'\n"
+    "  tables (--deep: and every tile)\n";
 
 struct Options {
     bool noStores = false;
+    bool deep = false;
     bool quiet = false;
     std::vector<std::string> scenarios;
 };
@@ -28,7 +29,7 @@ struct Options {
 // nullopt to go on, else the status to exit with (after --help, or a usage error).
 std::optional<int> parseOptions(const std::vector<std::string>& args, Options& o, std::ostream& out,
                                 std::ostream& err) {
-    const std::vector<std::string> known = {"--no-stores", "--quiet", "--help"};
+    const std::vector<std::string> known = {"--no-stores", "--deep", "--quiet", "--help"};
     bool positionalOnly = false;
     for (const auto& a : args) {
         if (positionalOnly || a.empty() || a[0] != '-' || a == "-") {
@@ -37,6 +38,8 @@ std::optional<int> parseOptions(const std::vector<std::string>& args, Options& o
             positionalOnly = true;
         } else if (a == "--no-stores") {
             o.noStores = true;
+        } else if (a == "--deep") {
+            o.deep = true;
         } else if (a == "--quiet" || a == "-q") {
             o.quiet = true;
         } else if (a == "--help" || a == "-h") {
@@ -65,20 +68,12 @@ bool validateOne(const std::string& path, const Options& o, std::ostream& out, s
     bool valid = true;
     std::size_t storesOpened = 0;
     if (!o.noStores) {
-        std::map<std::string, std::unique_ptr<io::StoreReader>> opened;
-        for (const auto& [id, store] : scenario->stores) {
-            auto reader = io::StoreReader::open(store.path);
-            err << reader.diagnostics.format();
-            if (reader.ok() && *reader.value) opened.emplace(id, std::move(*reader.value));
-        }
+        OpenedStores opened;
+        const Diagnostics stores = openScenarioStores(
+            *scenario, opened, o.deep ? io::IntegrityLevel::Deep : io::IntegrityLevel::Tables);
         storesOpened = opened.size();
-        const config::StoreLookup lookup = [&](const std::string& id) -> const io::StoreInfo* {
-            auto it = opened.find(id);
-            return it == opened.end() ? nullptr : &it->second->info();
-        };
-        const Diagnostics meaning = config::checkMeaning(*scenario, lookup);
-        err << meaning.format();
-        valid = !meaning.hasErrors();
+        err << stores.format();
+        valid = !stores.hasErrors();
     }
     if (valid && !o.quiet) {
         out << path << ": ok (" << scenario->layers.size() << " layers, "

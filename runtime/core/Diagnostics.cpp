@@ -1,19 +1,25 @@
 #include "runtime/core/Diagnostics.h"
 
+#include "runtime/core/MessageText.h"
+
 namespace kiosk {
 
 std::string Diagnostic::format() const {
-    std::string out = file.empty() ? std::string("geokiosk") : file;
+    // Every field can carry user text (a JSON string, a key, a file name, a parser's echo of
+    // the input): escaped and bounded here, once, so that a message is always one line of at
+    // most ~1.3 KB that cannot forge a second line or drive the terminal.
+    std::string out =
+        file.empty() ? std::string("geokiosk") : escapeForMessage(file, kMaxMessageFileBytes);
     if (line > 0) {
         out += ":" + std::to_string(line);
         if (column > 0) out += ":" + std::to_string(column);
     }
     out += ": ";
     if (severity == Severity::Warning) out += "warning: ";
-    if (!where.empty()) out += where + ": ";
-    out += message;
-    if (!hint.empty()) out += " (" + hint + ")";
-    if (!code.empty()) out += " [" + code + "]";
+    if (!where.empty()) out += escapeForMessage(where, kMaxMessageWhereBytes) + ": ";
+    out += escapeForMessage(message, kMaxMessageTextBytes);
+    if (!hint.empty()) out += " (" + escapeForMessage(hint, kMaxMessageHintBytes) + ")";
+    if (!code.empty()) out += " [" + escapeForMessage(code, 64) + "]";
     return out;
 }
 

@@ -23,6 +23,8 @@ std::size_t editDistance(std::string_view a, std::string_view b) {
 std::optional<std::string> closestMatch(std::string_view word,
                                         const std::vector<std::string>& candidates) {
     std::optional<std::string> best;
+    // No typo is 64 characters long; a 4 MiB key would cost seconds of edit distances.
+    if (word.size() > 64) return best;
     std::size_t bestDist = std::max<std::size_t>(2, word.size() / 3) + 1;
     for (const auto& c : candidates) {
         std::size_t d = editDistance(word, c);

@@ -31,6 +31,16 @@ bool readInt(std::string_view s, std::size_t& pos, int digits, int& out) {
     return true;
 }
 
+bool isLeap(long long y) {
+    return (y % 4 == 0 && y % 100 != 0) || y % 400 == 0;
+}
+
+// Days in a month of the proleptic Gregorian calendar: `2026-02-30` is refused, not rolled over.
+int daysInMonth(long long y, int m) {
+    static const int kDays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+    return m == 2 && isLeap(y) ? 29 : kDays[m - 1];
+}
+
 bool expect(std::string_view s, std::size_t& pos, char c) {
     if (pos < s.size() && s[pos] == c) {
         ++pos;
@@ -47,7 +57,7 @@ std::optional<double> parseIso8601(std::string_view s) {
     if (!readInt(s, p, 4, year) || !expect(s, p, '-') || !readInt(s, p, 2, month) ||
         !expect(s, p, '-') || !readInt(s, p, 2, day))
         return std::nullopt;
-    if (month < 1 || month > 12 || day < 1 || day > 31) return std::nullopt;
+    if (month < 1 || month > 12 || day < 1 || day > daysInMonth(year, month)) return std::nullopt;
     double frac = 0.0;
     if (p < s.size() && (s[p] == 'T' || s[p] == ' ')) {
         ++p;
@@ -79,6 +89,7 @@ std::optional<double> parseIso8601(std::string_view s) {
             if (!readInt(s, p, 2, th)) return std::nullopt;
             expect(s, p, ':');
             if (p < s.size() && !readInt(s, p, 2, tm)) return std::nullopt;
+            if (th > 14 || tm > 59) return std::nullopt;  // real zones span -12:00..+14:00
             tzSeconds = sign * (th * 3600 + tm * 60);
         }
     }
@@ -99,7 +110,7 @@ std::optional<double> parseOffset(std::string_view s) {
         double value = 0.0;
         while (p < s.size() && (std::isdigit(static_cast<unsigned char>(s[p])) || s[p] == '.'))
             ++p;
-        if (p == start) return std::nullopt;
+        if (p == start || p - start > kMaxOffsetDigits) return std::nullopt;
         if (std::sscanf(std::string(s.substr(start, p - start)).c_str(), "%lf", &value) != 1)
             return std::nullopt;
         sawNumber = true;
@@ -120,7 +131,7 @@ std::optional<double> parseOffset(std::string_view s) {
         sawUnit = true;
         total += value * unit;
     }
-    if (!sawNumber) return std::nullopt;
+    if (!sawNumber || !(total <= kMaxOffsetSeconds)) return std::nullopt;
     return sign * total;
 }
 

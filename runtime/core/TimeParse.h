@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -18,9 +19,21 @@ struct TimeSpec {
     double resolve(double startEpoch) const { return isOffset ? startEpoch + seconds : seconds; }
 };
 
-/** @brief `2026-03-14T06:40:00Z` (also with fractional seconds or `+hh:mm`) -> epoch seconds. */
+/** @brief Longest number in an offset: `+` followed by 400 digits is not a time anyone means. */
+inline constexpr std::size_t kMaxOffsetDigits = 12;
+/** @brief Largest offset magnitude accepted: 1000 years of 365.25 days. */
+inline constexpr double kMaxOffsetSeconds = 1000.0 * 365.25 * 86400.0;
+
+/**
+ * @brief `2026-03-14T06:40:00Z` (also with fractional seconds or `+hh:mm`) -> epoch seconds.
+ * The date must exist (`2026-02-30` is refused, not rolled over to March 2); zone offsets are
+ * at most 14 hours.
+ */
 std::optional<double> parseIso8601(std::string_view text);
-/** @brief `+3600`, `+1h30m`, `+90s`, `+2d`, `-10m` -> seconds. */
+/**
+ * @brief `+3600`, `+1h30m`, `+90s`, `+2d`, `-10m` -> seconds. Each number has at most
+ * kMaxOffsetDigits characters and the total is at most kMaxOffsetSeconds.
+ */
 std::optional<double> parseOffset(std::string_view text);
 /** @brief Either form. */
 std::optional<TimeSpec> parseTimeSpec(std::string_view text);

@@ -54,6 +54,29 @@ Result<SwwMesh> SwwMesh::open(const std::string& path) {
         return d;
     }
     const std::size_t np = dimLen(xId, 0), nt = dimLen(timeId, 0), nv = dimLen(volId, 0);
+    // Every read below fills a buffer sized from these: shapes must agree exactly, or a file
+    // whose `y` is longer than `x` (or whose triangles have 4 corners) overruns it. The sizes
+    // are bounded so that a small file claiming huge dimensions is refused, not allocated.
+    int ndY = 0, ndVol = 0, ndTime = 0;
+    nc_inq_varndims(nc.id, yId, &ndY);
+    nc_inq_varndims(nc.id, volId, &ndVol);
+    nc_inq_varndims(nc.id, timeId, &ndTime);
+    int ndX = 0;
+    nc_inq_varndims(nc.id, xId, &ndX);
+    if (ndX != 1 || ndY != 1 || ndVol != 2 || ndTime != 1 || dimLen(yId, 0) != np ||
+        dimLen(volId, 1) != 3 || dimLen(stageId, 0) != nt || dimLen(stageId, 1) != np) {
+        d.error("IMPORT_SWW", path, "",
+                "variables have inconsistent shapes (x[points], y[points], volumes[triangles][3], "
+                "time[steps], stage[steps][points])");
+        return d;
+    }
+    constexpr std::size_t kMaxPoints = std::size_t(1) << 26, kMaxSteps = std::size_t(1) << 20;
+    if (np == 0 || nv == 0 || nt == 0 || np > kMaxPoints || nv > kMaxPoints || nt > kMaxSteps) {
+        d.error("IMPORT_SWW", path, "",
+                "mesh sizes out of range (" + std::to_string(np) + " points, " +
+                    std::to_string(nv) + " triangles, " + std::to_string(nt) + " steps)");
+        return d;
+    }
     m.mX.resize(np);
     m.mY.resize(np);
     m.mTri.resize(nv * 3);
@@ -85,6 +108,12 @@ Result<SwwMesh> SwwMesh::open(const std::string& path) {
         m.mElevationVar = "z";
     else {
         d.error("IMPORT_SWW", path, "", "no elevation (or z) variable");
+        return d;
+    }
+    // Static elevation is read whole into a points-sized buffer: its length must be exactly that.
+    if ((nd == 1 && dimLen(eId, 0) != np) || (nd == 2 && dimLen(eId, 1) != np) || nd < 1 ||
+        nd > 2) {
+        d.error("IMPORT_SWW", path, m.mElevationVar, "shape is not [points] or [steps][points]");
         return d;
     }
     m.mElevationPerStep = nd == 2;

@@ -1,5 +1,7 @@
 #include "runtime/io/ImageCodec.h"
 
+#include "runtime/io/ImageHeader.h"
+
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
@@ -37,7 +39,9 @@ Result<std::vector<std::uint8_t>> encode(const char* format, const void* pixels,
 
 Result<DecodedImage> decode(const std::uint8_t* data, std::size_t size, const std::string& where,
                             bool gray16) {
-    Diagnostics d;
+    // Header peek first: a few bytes claiming 60000x60000 must not reach the decoder.
+    Diagnostics d = checkDecodeBudget(data, size, where);
+    if (d.hasErrors()) return d;
     const ImageFormat fmt = sniffImageFormat(data, size);
     const char* name = fmt == ImageFormat::Png    ? "png"
                        : fmt == ImageFormat::Jpeg ? "jpeg"

@@ -1,6 +1,7 @@
 #include "runtime/io/ScalarTileCodec.h"
 
 #include "runtime/io/ImageCodec.h"
+#include "runtime/io/ImageHeader.h"
 
 #include <algorithm>
 #include <cmath>
@@ -66,9 +67,12 @@ Result<RasterTile> decodeScalarTile(const std::uint8_t* png, std::size_t pngSize
                                     const std::uint8_t* border, std::size_t borderSize,
                                     double scale, double offset, double dataNull, int tileWidth,
                                     int tileHeight, const std::string& where) {
+    // Format, depth, channels and size from the header, before any decoding (issue 13: an RGB8
+    // PNG decoded as grey garbles the terrain; a bomb's size was only checked after decoding).
+    Diagnostics d = checkTileHeader(png, pngSize, {tileWidth, tileHeight, true}, where);
+    if (d.hasErrors()) return d;
     auto img = decodeGray16(png, pngSize, where);
     if (!img) return img.diagnostics;
-    Diagnostics d;
     if (img->width != tileWidth || img->height != tileHeight) {
         d.error("STORE_TILE_CORRUPT", "", where,
                 "tile is " + std::to_string(img->width) + "x" + std::to_string(img->height) +

@@ -113,7 +113,7 @@ Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
     const double finest = g->columnDouble(8);
     grid.crsName = g->columnText(9);
     grid.crsWkt = g->columnText(10);
-    if (levels < 1 || levels > 30 || tw < 1 || th < 1 || !(finest > 0)) {
+    if (levels < 1 || levels > 30 || tw < 1 || th < 1 || tw > 4096 || th > 4096 || !(finest > 0)) {
         d.error("STORE_NOT_GEOKIOSK", mInfo.path, kGridTable, "tile grid is invalid");
         return d;
     }
@@ -159,12 +159,21 @@ Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
         mInfo.layers.push_back(std::move(li));
     }
 
+    // Scalar tiles cannot be drawn right without these: a clear error, not vanishing terrain.
+    if (!mMeta.empty())
+        for (const char* t : {kTileStatsTable, "gpkg_2d_gridded_tile_ancillary"})
+            if (!mDb.tableExists(t)) {
+                d.error("STORE_NOT_GEOKIOSK", mInfo.path, t,
+                        "table is missing (scalar layers need it)");
+                return d;
+            }
+
     if (mDb.tableExists(kSequencesTable)) {
         auto ss = mDb.prepare(
             "SELECT name, units, variable, categorical, nodata FROM "
             "kiosk_sequences ORDER BY rowid");
         auto fs = mDb.prepare(
-            "SELECT time_epoch, table_name, min_value, max_value FROM "
+            "SELECT time_epoch, table_name, min_value, max_value, frame_index FROM "
             "kiosk_sequence_frames WHERE sequence_name = ? ORDER BY "
             "frame_index");
         if (!ss) return ss.diagnostics;
@@ -181,6 +190,20 @@ Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
             fs->bind(1, std::string_view(si.name));
             auto& tables = mFrameTables[si.name];
             while (fs->step() == SQLITE_ROW) {
+                // Deleted frame rows would otherwise replay as a shorter, wrong sequence.
+                const std::int64_t index = fs->columnInt(4);
+                const double time = fs->columnDouble(0);
+                if (index != std::int64_t(si.frameTimes.size()) ||
+                    (!si.frameTimes.empty() && !(time > si.frameTimes.back()))) {
+                    d.error("STORE_NOT_GEOKIOSK", mInfo.path,
+                            std::string(kFramesTable) + "/" + si.name,
+                            index != std::int64_t(si.frameTimes.size())
+                                ? "frame " + std::to_string(si.frameTimes.size()) +
+                                      " is missing (next is " + std::to_string(index) + ")"
+                                : "frame " + std::to_string(index) +
+                                      " is not later than the one before");
+                    return d;
+                }
                 si.frameTimes.push_back(fs->columnDouble(0));
                 tables.push_back(fs->columnText(1));
                 si.frameMin.push_back(fs->columnDouble(2));
@@ -197,8 +220,15 @@ Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
 Result<std::unique_ptr<StoreReader>> StoreReader::open(const std::filesystem::path& path) {
     Diagnostics d;
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) {
-        d.error("STORE_OPEN", path.string(), "", "store file does not exist");
+    const auto status = std::filesystem::status(path, ec);
+    if (!std::filesystem::is_regular_file(status)) {
+        // A folder, FIFO or device (/dev/zero) is named as what it is: SQLite would block on a
+        // FIFO and "does not exist" would send the user looking for the wrong problem.
+        d.error("STORE_OPEN", path.string(), "",
+                !std::filesystem::exists(status)        ? "store file does not exist"
+                : std::filesystem::is_directory(status) ? "is a folder, not a store file"
+                                                        : "is not a regular file (a device, FIFO "
+                                                          "or socket), not a store file");
         return d;
     }
     auto db = SqliteDb::open(path, SqliteDb::Mode::ReadOnly);

@@ -1,9 +1,20 @@
 #include "runtime/io/StoreTables.h"
 
 #include "runtime/io/ImageCodec.h"
+#include "runtime/io/ImageHeader.h"
 #include "runtime/io/ScalarTileCodec.h"
 
+#include <cmath>
+#include <cstdio>
+
 namespace kiosk::io {
+
+namespace {
+// Bounds of gpkg_2d_gridded_tile_ancillary scale/offset (value = raw * scale + offset): far
+// beyond any terrain or model output in any unit, far below where floats lose all meaning.
+constexpr double kMaxTileScale = 1e6;
+constexpr double kMaxTileOffset = 1e9;
+}  // namespace
 
 const char* layerKindName(LayerKind kind) noexcept {
     switch (kind) {
@@ -51,7 +62,7 @@ Result<RasterTile> TileQueries::readScalar(const std::string& table, const Scala
     Statement* st = statement(
         mScalar, table,
         "SELECT t.tile_data, a.scale, a.offset, s.border_posts, s.min_value, s.max_value, "
-        "s.geometric_error FROM " +
+        "s.geometric_error, a.tpudt_id IS NULL, s.table_name IS NULL FROM " +
             quoteIdentifier(table) +
             " t LEFT JOIN gpkg_2d_gridded_tile_ancillary a ON a.tpudt_name = ?1 AND "
             "a.tpudt_id = t.id LEFT JOIN kiosk_tile_stats s ON s.table_name = ?1 AND "
@@ -75,9 +86,29 @@ Result<RasterTile> TileQueries::readScalar(const std::string& table, const Scala
             d.add(mDb->error("STORE_TILE_CORRUPT", where, "cannot read tile"));
         return d;
     }
+    // Without its ancillary row a tile's raw values would be drawn as metres (spikes); without
+    // its stats row the selector has no bounds or error for it and the borders are guessed.
+    const char* missingRow = st->columnInt(7) != 0   ? "gpkg_2d_gridded_tile_ancillary"
+                             : st->columnInt(8) != 0 ? "kiosk_tile_stats"
+                                                     : nullptr;
+    if (missingRow) {
+        d.error("STORE_TILE_CORRUPT", mDb->path(), where,
+                std::string("tile has no ") + missingRow + " row");
+        st->reset();
+        return d;
+    }
     const auto [png, pngSize] = st->columnBlob(0);
     const double scale = st->columnIsNull(1) ? 1.0 : st->columnDouble(1);
     const double offset = st->columnIsNull(2) ? 0.0 : st->columnDouble(2);
+    // 16-bit raw values times the scale must stay finite floats with some precision left.
+    if (!(scale > 0 && scale <= kMaxTileScale) || !(std::abs(offset) <= kMaxTileOffset)) {
+        char text[96];
+        std::snprintf(text, sizeof text, "tile scale %g / offset %g", scale, offset);
+        d.error("STORE_TILE_CORRUPT", mDb->path(), where,
+                std::string(text) + " out of range (scale in (0, 1e6], |offset| <= 1e9)");
+        st->reset();
+        return d;
+    }
     const auto [border, borderSize] = st->columnBlob(3);
     auto tile = decodeScalarTile(png, pngSize, border, borderSize, scale, offset, meta.dataNull,
                                  meta.tileWidth, meta.tileHeight, where);
@@ -105,10 +136,14 @@ Result<RasterTile> TileQueries::readScalar(const std::string& table, const Scala
 Result<ImageTile> TileQueries::readImage(const std::string& table, const TileId& id) {
     Diagnostics d;
     const std::string where = tileName(table, id);
-    Statement* st = statement(mImage, table,
-                              "SELECT tile_data FROM " + quoteIdentifier(table) +
-                                  " WHERE zoom_level = ?1 AND tile_column = ?2 AND tile_row = ?3",
-                              d);
+    // The tile matrix says what size this level's tiles are: checked before decoding.
+    Statement* st =
+        statement(mImage, table,
+                  "SELECT t.tile_data, m.tile_width, m.tile_height FROM " + quoteIdentifier(table) +
+                      " t LEFT JOIN gpkg_tile_matrix m ON m.table_name = ?4 AND "
+                      "m.zoom_level = t.zoom_level WHERE t.zoom_level = ?1 AND "
+                      "t.tile_column = ?2 AND t.tile_row = ?3",
+                  d);
     if (!st) {
         d.error("STORE_TILE_CORRUPT", mDb->path(), where, "cannot query tile table");
         return d;
@@ -116,6 +151,7 @@ Result<ImageTile> TileQueries::readImage(const std::string& table, const TileId&
     st->bindInt(1, id.level);
     st->bindInt(2, id.column);
     st->bindInt(3, id.row);
+    st->bind(4, std::string_view(table));
     const int rc = st->step();
     if (rc != SQLITE_ROW) {
         if (rc == SQLITE_DONE)
@@ -125,6 +161,22 @@ Result<ImageTile> TileQueries::readImage(const std::string& table, const TileId&
         return d;
     }
     const auto [data, size] = st->columnBlob(0);
+    if (st->columnIsNull(1)) {
+        d.error("STORE_TILE_CORRUPT", mDb->path(), where,
+                "no gpkg_tile_matrix row for level " + std::to_string(id.level));
+        st->reset();
+        return d;
+    }
+    const TileExpectation expect{int(st->columnInt(1)), int(st->columnInt(2)), false};
+    const Diagnostics header = checkTileHeader(data, size, expect, where);
+    for (Diagnostic e : header.items()) {
+        e.file = mDb->path();
+        d.add(std::move(e));
+    }
+    if (d.hasErrors()) {
+        st->reset();
+        return d;
+    }
     auto img = decodeRgba8(data, size, where);
     st->reset();
     if (!img) {

@@ -1,0 +1,59 @@
+#pragma once
+
+#include "config/Scenario.h"
+#include "runtime/core/Result.h"
+
+#include <atomic>
+#include <condition_variable>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+// play's hot reload, off the frame loop. A worker polls the scenario's files; when one changed it
+// reads and checks the scenario (Session::readChecked: the part a hostile edit can make slow)
+// and hands the finished result over. The frame loop only ever takes a finished result: an
+// include bomb saved into a running kiosk costs the worker, never a frame.
+namespace kiosk::app {
+
+class ScenarioReloader {
+public:
+    using Loaded = Result<std::unique_ptr<config::Scenario>>;
+
+    /**
+     * @brief Start watching `files` (the running scenario's sourceFiles; `scenarioPath` first)
+     * as they are now. Polls every `pollSeconds`.
+     */
+    ScenarioReloader(std::filesystem::path scenarioPath, std::vector<std::filesystem::path> files,
+                     double pollSeconds = 0.5);
+    ~ScenarioReloader();
+    ScenarioReloader(const ScenarioReloader&) = delete;
+    ScenarioReloader& operator=(const ScenarioReloader&) = delete;
+
+    /** @brief A load finished since the last call (valid or not); never blocks. Frame loop. */
+    std::optional<Loaded> take();
+
+    /** @brief Loads started so far (tests). */
+    int loadsStarted() const noexcept { return mLoads.load(); }
+
+private:
+    using Stamps = std::vector<std::filesystem::file_time_type>;
+    static Stamps stampsOf(const std::vector<std::filesystem::path>& files);
+    void run();
+
+    const std::filesystem::path mPath;
+    const double mPollSeconds;
+    std::vector<std::filesystem::path> mFiles;  // worker only
+    Stamps mStamps;                             // worker only
+
+    std::mutex mMutex;
+    std::condition_variable mWake;
+    bool mStop = false;               // guarded by mMutex
+    std::optional<Loaded> mFinished;  // guarded by mMutex; a newer result replaces an untaken one
+    std::atomic<int> mLoads{0};
+    std::thread mThread;
+};
+
+}  // namespace kiosk::app

@@ -1,0 +1,274 @@
+#include "runtime/io/StoreIntegrity.h"
+
+#include "runtime/io/ImageCodec.h"
+#include "runtime/io/ImageHeader.h"
+#include "runtime/io/ScalarTileCodec.h"
+#include "runtime/io/SqliteDb.h"
+#include "runtime/io/StoreTables.h"
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace kiosk::io {
+
+namespace {
+
+struct TileTable {
+    std::string name;
+    bool scalar = false;  // coverage (elevation, sequence frame) vs imagery
+    int levels = 0;
+    std::int64_t tileCount = 0;
+};
+
+class Checker {
+public:
+    Checker(SqliteDb& db, Diagnostics& d) : mDb(db), mD(d) {}
+
+    void run(IntegrityLevel level) {
+        for (const char* t : {"gpkg_spatial_ref_sys", "gpkg_contents", "gpkg_tile_matrix_set",
+                              "gpkg_tile_matrix", kGridTable, kLayersTable, kTileStatsTable}) {
+            if (!mDb.tableExists(t)) error(t, "table is missing");
+        }
+        if (mD.hasErrors()) return;
+        if (!grid()) return;
+        layers();
+        sequences();
+        for (const auto& t : mTables) table(t, level != IntegrityLevel::Core);
+        for (const auto& [what, tables] : mByProblem) {
+            std::string list;
+            for (std::size_t i = 0; i < tables.size() && i < 5; ++i)
+                list += (i ? ", " : "") + tables[i];
+            if (tables.size() > 5) list += ", ...";
+            error(tables.size() == 1 ? tables[0] : std::string(),
+                  tables.size() == 1
+                      ? what
+                      : what + " in " + std::to_string(tables.size()) + " tables (" + list + ")");
+        }
+        if (level == IntegrityLevel::Deep)
+            for (const auto& t : mTables) tiles(t);
+        if (mTileProblems > kMaxReportedTileProblems)
+            error("", std::to_string(mTileProblems - kMaxReportedTileProblems) +
+                          " more tile problems not listed");
+    }
+
+private:
+    void error(const std::string& where, std::string what, const char* code = "STORE_INTEGRITY") {
+        mD.error(code, mDb.path(), where, std::move(what));
+    }
+
+    std::optional<std::int64_t> count(const std::string& sql, const std::string& bindText = {}) {
+        auto st = mDb.prepare(sql);
+        if (!st) {
+            mD.append(st.diagnostics);
+            return std::nullopt;
+        }
+        if (!bindText.empty()) st->bind(1, std::string_view(bindText));
+        if (st->step() != SQLITE_ROW) return std::nullopt;
+        return st->columnInt(0);
+    }
+
+    bool grid() {
+        auto g = mDb.prepare(
+            "SELECT srs_id, tile_width, tile_height, levels FROM kiosk_grid WHERE id = 1");
+        if (!g || g->step() != SQLITE_ROW) {
+            error(kGridTable, "no grid row");
+            return false;
+        }
+        mSrs = g->columnInt(0);
+        mTileW = int(g->columnInt(1));
+        mTileH = int(g->columnInt(2));
+        mLevels = int(g->columnInt(3));
+        if (count("SELECT COUNT(*) FROM gpkg_spatial_ref_sys WHERE srs_id = " +
+                  std::to_string(mSrs)) != 1)
+            error("gpkg_spatial_ref_sys",
+                  "no row for the store's CRS (srs_id " + std::to_string(mSrs) + ")");
+        for (int mandatory : {-1, 0, 4326})
+            if (count("SELECT COUNT(*) FROM gpkg_spatial_ref_sys WHERE srs_id = " +
+                      std::to_string(mandatory)) != 1)
+                error("gpkg_spatial_ref_sys",
+                      "the mandatory row srs_id " + std::to_string(mandatory) + " is missing");
+        return true;
+    }
+
+    void layers() {
+        auto ls = mDb.prepare("SELECT table_name, kind, levels, tile_count FROM kiosk_layers");
+        if (!ls) {
+            mD.append(ls.diagnostics);
+            return;
+        }
+        while (ls->step() == SQLITE_ROW) {
+            TileTable t;
+            t.name = ls->columnText(0);
+            const auto kind = parseLayerKind(ls->columnText(1));
+            if (!kind) continue;  // StoreReader warns about unknown kinds
+            t.scalar = *kind != LayerKind::Imagery;
+            t.levels = int(ls->columnInt(2));
+            t.tileCount = ls->columnInt(3);
+            if (t.levels < 1 || t.levels > mLevels)
+                error(t.name, "kiosk_layers.levels " + std::to_string(t.levels) + " outside 1.." +
+                                  std::to_string(mLevels));
+            mTables.push_back(std::move(t));
+        }
+    }
+
+    void sequences() {
+        if (!mDb.tableExists(kSequencesTable)) return;
+        if (!mDb.tableExists(kFramesTable)) {
+            error(kFramesTable, "table is missing (kiosk_sequences exists)");
+            return;
+        }
+        auto ss = mDb.prepare("SELECT name FROM kiosk_sequences");
+        if (!ss) return;
+        while (ss->step() == SQLITE_ROW) {
+            const std::string name = ss->columnText(0);
+            auto fs = mDb.prepare(
+                "SELECT frame_index, time_epoch, table_name FROM kiosk_sequence_frames WHERE "
+                "sequence_name = ?1 ORDER BY frame_index");
+            if (!fs) continue;
+            fs->bind(1, std::string_view(name));
+            std::int64_t expectIndex = 0;
+            double lastTime = -INFINITY;
+            bool reported = false;  // the first problem of a sequence says enough
+            while (!reported && fs->step() == SQLITE_ROW) {
+                const std::int64_t index = fs->columnInt(0);
+                const double time = fs->columnDouble(1);
+                const std::string tableName = fs->columnText(2);
+                reported = true;
+                if (index != expectIndex)
+                    error(std::string(kFramesTable) + "/" + name,
+                          "frame " + std::to_string(expectIndex) + " is missing (next is " +
+                              std::to_string(index) + ")");
+                else if (!(time > lastTime))
+                    error(std::string(kFramesTable) + "/" + name,
+                          "frame " + std::to_string(index) + " is not later than the one before");
+                else if (!mDb.tableExists(tableName))
+                    error(tableName, "frame table of sequence \"" + name + "\" is missing");
+                else
+                    reported = false;
+                expectIndex = index + 1;
+                lastTime = time;
+            }
+            if (reported) continue;
+            if (expectIndex == 0) error(std::string(kSequencesTable) + "/" + name, "no frames");
+            // Frame tables registered as layers but not listed as frames: rows were deleted.
+            const auto orphans = count(
+                "SELECT COUNT(*) FROM kiosk_layers WHERE kind = 'sequence_frame' AND table_name "
+                "LIKE ?1 || '\\_f%' ESCAPE '\\' AND table_name NOT IN (SELECT table_name FROM "
+                "kiosk_sequence_frames)",
+                name);
+            if (orphans && *orphans > 0)
+                error(std::string(kFramesTable) + "/" + name,
+                      std::to_string(*orphans) +
+                          " frame tables are not listed in kiosk_sequence_frames");
+        }
+    }
+
+    // One line per kind of problem over all tables: an emptied gpkg_contents is one message.
+    void problem(const TileTable& t, const std::string& what) {
+        mByProblem[what].push_back(t.name);
+    }
+
+    void table(const TileTable& t, bool perTile) {
+        if (!mDb.tableExists(t.name)) {
+            problem(t, "tile table is missing");
+            return;
+        }
+        const char* type = t.scalar ? "2d-gridded-coverage" : "tiles";
+        if (count("SELECT COUNT(*) FROM gpkg_contents WHERE table_name = ?1 AND data_type = '" +
+                      std::string(type) + "'",
+                  t.name) != 1)
+            problem(t, std::string("no gpkg_contents row with data_type '") + type + "'");
+        if (count("SELECT COUNT(*) FROM gpkg_tile_matrix_set WHERE table_name = ?1", t.name) != 1)
+            problem(t, "no gpkg_tile_matrix_set row");
+        const auto matrices =
+            count("SELECT COUNT(*) FROM gpkg_tile_matrix WHERE table_name = ?1 AND tile_width = " +
+                      std::to_string(mTileW) + " AND tile_height = " + std::to_string(mTileH),
+                  t.name);
+        if (matrices.value_or(0) < t.levels)
+            problem(t, "gpkg_tile_matrix lacks levels of " + std::to_string(mTileW) + "x" +
+                           std::to_string(mTileH) + " tiles that kiosk_layers lists");
+        if (t.scalar && count("SELECT COUNT(*) FROM gpkg_2d_gridded_coverage_ancillary WHERE "
+                              "tile_matrix_set_name = ?1",
+                              t.name) != 1)
+            problem(t, "no gpkg_2d_gridded_coverage_ancillary row");
+        if (!perTile) return;
+        const std::string q = quoteIdentifier(t.name);
+        const auto tiles = count("SELECT COUNT(*) FROM " + q);
+        if (tiles && *tiles != t.tileCount)
+            problem(t, "tile count differs from kiosk_layers.tile_count");
+        if (!t.scalar) return;
+        const auto noAncillary =
+            count("SELECT COUNT(*) FROM " + q +
+                      " t LEFT JOIN gpkg_2d_gridded_tile_ancillary a ON a.tpudt_name = ?1 AND "
+                      "a.tpudt_id = t.id WHERE a.id IS NULL",
+                  t.name);
+        if (noAncillary.value_or(0) > 0)
+            problem(t, "tiles without a gpkg_2d_gridded_tile_ancillary row (scale/offset)");
+        const auto badScale = count(
+            "SELECT COUNT(*) FROM gpkg_2d_gridded_tile_ancillary WHERE tpudt_name = ?1 AND NOT "
+            "(scale > 0 AND scale <= 1e6 AND abs(offset) <= 1e9)",
+            t.name);
+        if (badScale.value_or(0) > 0)
+            problem(t, "tiles with a scale outside (0, 1e6] or |offset| > 1e9");
+        const auto noStats =
+            count("SELECT COUNT(*) FROM " + q +
+                      " t LEFT JOIN kiosk_tile_stats s ON s.table_name = ?1 AND s.zoom_level = "
+                      "t.zoom_level AND s.tile_column = t.tile_column AND s.tile_row = t.tile_row "
+                      "WHERE s.table_name IS NULL",
+                  t.name);
+        if (noStats.value_or(0) > 0) problem(t, "tiles without a kiosk_tile_stats row");
+    }
+
+    void tiles(const TileTable& t) {
+        if (!mDb.tableExists(t.name)) return;
+        auto st = mDb.prepare("SELECT zoom_level, tile_column, tile_row, tile_data FROM " +
+                              quoteIdentifier(t.name));
+        if (!st) return;
+        while (st->step() == SQLITE_ROW) {
+            const TileId id{int(st->columnInt(0)), int(st->columnInt(1)), int(st->columnInt(2))};
+            const auto [data, size] = st->columnBlob(3);
+            const std::string where = tileName(t.name, id);
+            Diagnostics tile = checkTileHeader(data, size, {mTileW, mTileH, t.scalar}, where);
+            if (!tile.hasErrors()) {
+                // Decode: the header can be right and the pixels still broken.
+                if (t.scalar) {
+                    auto r = decodeGray16(data, size, where);
+                    if (!r) tile = r.diagnostics;
+                } else {
+                    auto r = decodeRgba8(data, size, where);
+                    if (!r) tile = r.diagnostics;
+                }
+            }
+            for (Diagnostic e : tile.items()) {
+                if (e.severity != Severity::Error) continue;
+                if (++mTileProblems > kMaxReportedTileProblems) break;
+                e.file = mDb.path();
+                if (e.code == "IMAGE_DECODE") e.code = "STORE_TILE_CORRUPT";
+                mD.add(std::move(e));
+                break;
+            }
+        }
+    }
+
+    SqliteDb& mDb;
+    Diagnostics& mD;
+    std::int64_t mSrs = 0;
+    int mTileW = 0, mTileH = 0, mLevels = 0;
+    std::vector<TileTable> mTables;
+    std::map<std::string, std::vector<std::string>> mByProblem;  // problem -> tables
+    int mTileProblems = 0;
+};
+
+}  // namespace
+
+Diagnostics checkStoreIntegrity(const std::filesystem::path& path, IntegrityLevel level) {
+    Diagnostics d;
+    auto db = SqliteDb::open(path, SqliteDb::Mode::ReadOnly);
+    if (!db) return db.diagnostics;
+    Checker(*db, d).run(level);
+    return d;
+}
+
+}  // namespace kiosk::io
