@@ -18,6 +18,7 @@ for t in "${TARGETS[@]}"; do
     [[ -x $bin ]] || { echo "fuzz: $bin missing (needs clang++ and libclang-rt-*-dev)" >&2; exit 2; }
     case $t in
         scenario) seeds=(scenarios/broken tests/unit/config/data) ;;
+        tile) seeds=(tests/fuzz/seeds/tiles) ;;
         *) seeds=(tests/fuzz/seeds/$t) ;;
     esac
     mkdir -p "$BUILD/tests/fuzz/corpus-$t"

@@ -124,6 +124,8 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     anim::ScenarioClock clock = makeClock(*session);
     // Edits are read and checked on the reloader's thread; this loop only swaps in a result.
     ScenarioReloader reloader(scenarioPath, session->scenario().sourceFiles, kReloadPollSeconds);
+    KIOSK_LOG_INFO(kTag, "%s: playing, watching %zu files for edits", scenarioPath.c_str(),
+                   session->scenario().sourceFiles.size());
     double last = wall.now();
     platform::InputState input;
     std::optional<math::Viewpoint> manual;  // set while the user steers the camera

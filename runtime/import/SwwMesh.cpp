@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <netcdf.h>
@@ -70,8 +71,14 @@ Result<SwwMesh> SwwMesh::open(const std::string& path) {
                 "time[steps], stage[steps][points])");
         return d;
     }
-    constexpr std::size_t kMaxPoints = std::size_t(1) << 26, kMaxSteps = std::size_t(1) << 20;
-    if (np == 0 || nv == 0 || nt == 0 || np > kMaxPoints || nv > kMaxPoints || nt > kMaxSteps) {
+    // A header can claim any size; the data must be in the file (netCDF-4 may compress it:
+    // allow 64:1), so a 600-byte file cannot make this allocate gigabytes.
+    constexpr std::size_t kMaxPoints = std::size_t(1) << 24, kMaxSteps = std::size_t(1) << 20;
+    std::error_code sizeError;
+    const std::uintmax_t fileBytes = std::filesystem::file_size(path, sizeError);
+    const std::uintmax_t budget = sizeError ? 0 : fileBytes * 64;
+    if (np == 0 || nv == 0 || nt == 0 || np > kMaxPoints || nv > kMaxPoints || nt > kMaxSteps ||
+        (np * 2 + nv * 3 + nt) * 4 > budget) {
         d.error("IMPORT_SWW", path, "",
                 "mesh sizes out of range (" + std::to_string(np) + " points, " +
                     std::to_string(nv) + " triangles, " + std::to_string(nt) + " steps)");

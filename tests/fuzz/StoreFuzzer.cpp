@@ -16,6 +16,7 @@
 namespace {
 
 using namespace kiosk::io;
+using kiosk::TileId;
 constexpr int kT = 16;
 std::vector<std::uint8_t> gBase;
 
@@ -108,7 +109,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             for (int f = 0; f < int(seq.frameTimes.size()); ++f)
                 kiosk::fuzz::checkContract(r.readSequenceFrame(seq.name, f, TileId{0, 0, 0}));
     }
-    for (const auto& d : checkStoreIntegrity(path, IntegrityLevel::Deep).items())
+    const kiosk::Diagnostics integrity = checkStoreIntegrity(path, IntegrityLevel::Deep);
+    for (const auto& d : integrity.items())
         if (d.format().find('\n') != std::string::npos) __builtin_trap();
     return 0;
 }

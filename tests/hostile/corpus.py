@@ -395,7 +395,13 @@ def play_reload(env):
     proc = subprocess.Popen([GK, "play", scenario, "--display", "headless", "--size", "64x36",
                              "--max-fps", "20", "--frames", "160"], stdout=log, stderr=log,
                             env=dict(env, GEOKIOSK_LOG="info"))
-    time.sleep(1.5)
+    # The bomb goes in once the first scenario plays (start-up is slow on a loaded machine).
+    logged = os.path.join(folder, "log")
+    while "playing, watching" not in open(logged, errors="replace").read():
+        if proc.poll() is not None or time.monotonic() - start > 40:
+            break
+        time.sleep(0.1)
+    time.sleep(0.5)
     include_bomb(folder)  # writes b*.json and a main.json that includes them
     time.sleep(2.0)
     good["title"] = "after the bomb"
