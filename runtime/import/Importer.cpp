@@ -3,7 +3,7 @@
 #include "runtime/core/TimeParse.h"
 #include "runtime/import/CfTime.h"
 #include "runtime/import/GdalRaster.h"
-#include "runtime/import/Progress.h"
+#include "runtime/core/Progress.h"
 #include "runtime/import/Pyramid.h"
 #include "runtime/import/SwwMesh.h"
 #include "runtime/import/TempStore.h"
