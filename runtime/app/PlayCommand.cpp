@@ -8,8 +8,10 @@
 #include <filesystem>
 #include <thread>
 
+#include "runtime/anim/BriefingPlayer.h"
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
+#include "runtime/app/BriefingControl.h"
 #include "runtime/app/Report.h"
 #include "runtime/app/Session.h"
 #include "runtime/app/Signals.h"
@@ -47,6 +49,13 @@ std::vector<std::filesystem::file_time_type> stamps(const std::vector<std::files
         out.push_back(std::filesystem::last_write_time(f, ec));
     }
     return out;
+}
+
+/** A briefing plays its chapters instead of the clock (and starts on its first chapter). */
+std::optional<anim::BriefingPlayer> makeBriefing(Session& s) {
+    if (!s.scenario().briefing) return std::nullopt;
+    s.setChapter(0);
+    return anim::BriefingPlayer(s.chapterSpans());
 }
 
 anim::ScenarioClock makeClock(const Session& s) {
@@ -131,6 +140,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     installStopSignals();
     RealClock wall;
     anim::ScenarioClock clock = makeClock(*session);
+    std::optional<anim::BriefingPlayer> briefing = makeBriefing(*session);
     auto watched = session->scenario().sourceFiles;
     auto watchedStamps = stamps(watched);
     double lastPoll = wall.now(), last = wall.now();
@@ -153,6 +163,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
                 if (next) {
                     session = std::move(*next.value);
                     clock = makeClock(*session);
+                    briefing = makeBriefing(*session);
                     watched = session->scenario().sourceFiles;
                     watchedStamps = stamps(watched);
                     KIOSK_LOG_INFO(kTag, "%s: reloaded", scenarioPath.c_str());
@@ -167,13 +178,23 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             }
         }
 
-        if (input.togglePause) clock.paused() ? clock.resume() : clock.pause();
-        if (input.step != 0) {
-            const auto keys = session->terrain().sequenceKeyTimes();
-            input.step > 0 ? clock.stepToNextKey(keys) : clock.stepToPreviousKey(keys);
+        const int chapterSteps = takeChapterSteps();  // the control endpoint's next/previous
+        if (briefing) {
+            // In a briefing space resumes from a chapter's pause, . and , go to the next and
+            // previous chapter.
+            if (input.togglePause) briefing->togglePause();
+            for (int k = input.step + chapterSteps; k != 0; k += k > 0 ? -1 : 1)
+                k > 0 ? briefing->next() : briefing->previous();
+        } else {
+            if (input.togglePause) clock.paused() ? clock.resume() : clock.pause();
+            if (input.step != 0) {
+                const auto keys = session->terrain().sequenceKeyTimes();
+                input.step > 0 ? clock.stepToNextKey(keys) : clock.stepToPreviousKey(keys);
+            }
         }
         const bool ready = !session->terrain().frameInfo().holdingSequence;
-        const double t = clock.advance(dt, ready).time;
+        const double t = briefing ? briefing->advance(dt, ready) : clock.advance(dt, ready).time;
+        if (briefing && briefing->chapter() != session->chapterIndex()) session->setChapter(briefing->chapter());
         auto vp = session->viewpointAt(t, "");
         // Interactive control (when the scenario allows it): the first navigation key takes the
         // camera off its path from where it is; h / Home gives it back.
@@ -197,10 +218,20 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             offscreen->bind();
         else
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        session->setPlayback(scene::playbackOf(clock));
+        if (briefing) {
+            const anim::ChapterSpan& span = session->chapterSpans()[std::size_t(briefing->chapter())];
+            scene::Playback playback;
+            playback.rate = briefing->atPause() || briefing->userPaused() ? 0.0 : (span.to - span.from) / span.seconds;
+            playback.start = span.from;
+            playback.end = span.to;
+            session->setPlayback(playback);
+        } else {
+            session->setPlayback(scene::playbackOf(clock));
+        }
         session->drawFrame(cam, t, w, h);
         // Camera paths are known in advance: ask for the tiles of the view two seconds ahead.
-        if (auto ahead = session->viewpointAt(clock.predict(kPrefetchSeconds), ""))
+        const double aheadTime = briefing ? briefing->timeAhead(kPrefetchSeconds) : clock.predict(kPrefetchSeconds);
+        if (auto ahead = session->viewpointAt(aheadTime, ""))
             session->terrain().prefetch(makeCamera(*ahead, session->terrain().bounds(), w, h,
                                                    session->scenario().camera.fovY));
         if (!dpy.swapBuffers()) {

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <thread>
 
+#include "runtime/anim/BriefingTimeline.h"
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
 #include "runtime/app/Report.h"
@@ -26,6 +27,8 @@ namespace kiosk::app {
 namespace {
 
 constexpr const char* kTag = "render";
+/** A chapter that pauses in `play` holds its last frame this long in an export. */
+constexpr double kPauseHoldSeconds = 2.0;
 /** How long one frame may wait for its tiles before it is drawn with what is resident. */
 constexpr double kSettleTimeoutSeconds = 120.0;
 
@@ -83,7 +86,8 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         return usage(std::string(video::videoFormatName(*format)) +
                      " is 4:2:0 and needs an even --size, got " + std::to_string(width) + "x" +
                      std::to_string(height));
-    double fps = 1.0;
+    // A video plays at --fps, so its default is a smooth one; PNG series keep one per second.
+    double fps = toVideo ? 30.0 : 1.0;
     if (auto f = args.value("fps")) {
         char* end = nullptr;
         fps = std::strtod(f->c_str(), &end);
@@ -129,6 +133,8 @@ int runRenderCommand(const std::vector<std::string>& argv) {
     }
     Session& s = **session;
     std::vector<double> times;
+    std::vector<anim::BriefingFrame> frames;  // briefing export only: each frame's chapter
+    std::vector<anim::ChapterFrames> chapterFrames;
     if (range) {
         const double t0 = from->resolve(s.startTime()), t1 = to->resolve(s.startTime());
         if (t1 < t0) return usage("--to is before --from");
@@ -145,6 +151,10 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         playback.start = t0;
         playback.end = t1;
         s.setPlayback(playback);
+    } else if (!at && (toDir || toVideo) && s.scenario().briefing) {
+        // The briefing: its chapters back to back, each with its camera, layers and caption.
+        frames = anim::briefingFrames(s.chapterSpans(), fps, kPauseHoldSeconds, &chapterFrames);
+        for (const auto& f : frames) times.push_back(f.time);
     } else {
         times.push_back(at ? at->resolve(s.startTime()) : s.startTime());
     }
@@ -158,6 +168,10 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         vo.height = height;
         vo.fps = fps;
         vo.crf = crf;
+        for (std::size_t c = 0; c < chapterFrames.size(); ++c)
+            vo.chapters.push_back({s.scenario().briefing->chapters[c].title,
+                                   double(chapterFrames[c].first) / fps,
+                                   double(chapterFrames[c].end) / fps});
         auto opened = FrameOutput::video(vo);
         if (!opened) {
             printDiagnostics(opened.diagnostics);
@@ -176,6 +190,15 @@ int runRenderCommand(const std::vector<std::string>& argv) {
     RealClock clock;
     const std::string viewpoint = args.value("viewpoint").value_or("");
     for (std::size_t i = 0; i < times.size(); ++i) {
+        if (!frames.empty() && frames[i].chapter != s.chapterIndex()) {
+            s.setChapter(frames[i].chapter);
+            const anim::ChapterSpan& span = s.chapterSpans()[std::size_t(frames[i].chapter)];
+            scene::Playback playback;  // prefetch along this chapter's span
+            playback.rate = (span.to - span.from) / span.seconds;
+            playback.start = span.from;
+            playback.end = span.to;
+            s.setPlayback(playback);
+        }
         auto vp = s.viewpointAt(times[i], viewpoint);
         if (!vp) {
             printDiagnostics(vp.diagnostics);
