@@ -10,6 +10,7 @@
 
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
+#include "runtime/app/KioskHooks.h"
 #include "runtime/app/Report.h"
 #include "runtime/app/Session.h"
 #include "runtime/app/Signals.h"
@@ -34,7 +35,8 @@ int usage(const std::string& message) {
     std::fprintf(stderr,
                  "geokiosk play: %s\nusage: geokiosk play SCENARIO [--display "
                  "auto|kms|x11|wayland|headless] [--size WxH] [--windowed] [--max-fps N] "
-                 "[--frames N] [--connector NAME] [--drm-device PATH]\n",
+                 "[--frames N] [--connector NAME] [--drm-device PATH] [--listen HOST:PORT] "
+                 "[--token-file FILE]\n",
                  message.c_str());
     return kExitUsage;
 }
@@ -57,8 +59,10 @@ anim::ScenarioClock makeClock(const Session& s) {
 }  // namespace
 
 int runPlayCommand(const std::vector<std::string>& argv) {
-    Args args("play", {"display", "size", "max-fps", "frames", "connector", "drm-device"},
-              {"windowed"});
+    std::vector<std::string> valueOptions = {"display",   "size",      "max-fps",
+                                             "frames",    "connector", "drm-device"};
+    for (const auto& o : KioskHooks::optionNames()) valueOptions.push_back(o);
+    Args args("play", valueOptions, {"windowed"});
     if (!args.parse(argv)) return usage(args.error());
     if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
     const std::filesystem::path scenarioPath = args.positionals()[0];
@@ -129,6 +133,9 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     }
 
     installStopSignals();
+    int kioskExit = kExitOk;
+    auto kiosk = KioskHooks::create(args, kioskExit);
+    if (!kiosk) return kioskExit;
     RealClock wall;
     anim::ScenarioClock clock = makeClock(*session);
     auto watched = session->scenario().sourceFiles;
@@ -140,6 +147,9 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         if (stopRequested()) break;
         dpy.pollInput(input);
         if (input.quitRequested) break;
+        kiosk->stallWhileTestFileExists();
+        // Remote control (pause/play/seek/rate act on the clock; reload re-opens at the poll).
+        if (kiosk->applyControl(clock).reload) watchedStamps.clear();
         const double now = wall.now();
         const double dt = now - last;
         last = now;
@@ -156,11 +166,13 @@ int runPlayCommand(const std::vector<std::string>& argv) {
                     watched = session->scenario().sourceFiles;
                     watchedStamps = stamps(watched);
                     KIOSK_LOG_INFO(kTag, "%s: reloaded", scenarioPath.c_str());
+                    kiosk->noteReload(true);
                 } else {
                     // Keep the last good scenario on screen; say exactly why the edit was refused.
                     for (const auto& d : next.diagnostics.items())
                         KIOSK_LOG_ERROR(kTag, "edit rejected, keeping the previous scenario: %s",
                                         d.format().c_str());
+                    kiosk->noteReload(false);
                     if (const Diagnostic* e = next.diagnostics.firstError())
                         session->setNotice("scenario edit rejected: " + e->format());
                 }
@@ -208,12 +220,14 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             return kExitCannotRun;
         }
         if (offscreen) glFinish();
+        kiosk->frameDone(*session, clock, scenarioPath, (wall.now() - now) * 1000.0, t);
         if (maxFps > 0) {
             const double spent = wall.now() - now;
             const double wait = 1.0 / maxFps - spent;
             if (wait > 0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
         }
     }
+    kiosk->service().stopping();
     KIOSK_LOG_INFO(kTag, "stopped cleanly");
     return kExitOk;
 }

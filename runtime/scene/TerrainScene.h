@@ -74,6 +74,14 @@ struct SceneFrameInfo {
     double uploadMs = 0;                   ///< GPU uploads (and evicted releases) this frame
 };
 
+/** @brief Bytes held by the tile cache by kind, and loader requests waiting (kiosk /metrics). */
+struct SceneCacheUsage {
+    std::uint64_t cpuTiles = 0;     ///< CPU payloads (budget terrain.cache_bytes)
+    std::uint64_t gpuTextures = 0;  ///< uploaded imagery / raster textures
+    std::uint64_t gpuMeshes = 0;    ///< uploaded terrain meshes
+    std::uint32_t loaderQueue = 0;  ///< requests waiting for the loader thread
+};
+
 /** @brief A transfer function ready for the GPU and the legend. */
 struct SceneLut {
     std::string name;
@@ -119,6 +127,8 @@ public:
     bool settled() const noexcept { return mSettled; }
     const SceneFrameInfo& frameInfo() const noexcept { return mFrame; }
     const std::vector<LayerStatus>& layerStatus() const noexcept { return mStatus; }
+    /** @brief Cache bytes by kind (TerrainSceneUsage.cpp); walks the GPU slots, no allocation. */
+    SceneCacheUsage cacheUsage() const;
 
     /** @brief World bounds of the data: extent and min/max elevation. */
     const math::Aabb& bounds() const noexcept { return mBounds; }
