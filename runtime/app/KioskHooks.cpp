@@ -1,5 +1,7 @@
 #include "runtime/app/KioskHooks.h"
 
+#include "config/KioskFile.h"
+#include "runtime/app/Report.h"
 #include "runtime/app/Session.h"
 #include "runtime/app/Signals.h"
 #include "runtime/core/ExitCode.h"
@@ -15,25 +17,43 @@
 namespace kiosk::app {
 namespace {
 constexpr const char* kTag = "kiosk";
-}
+/** @brief After a playlist switch found nothing playable, wait this long before trying again. */
+constexpr double kRetrySeconds = 10.0;
+}  // namespace
 
 const std::vector<std::string>& KioskHooks::optionNames() {
     static const std::vector<std::string> names = {"listen", "token-file"};
     return names;
 }
 
-std::unique_ptr<KioskHooks> KioskHooks::create(const Args& args, int& exitCode) {
+std::unique_ptr<KioskHooks> KioskHooks::create(const Args& args, const std::filesystem::path& file,
+                                               int& exitCode) {
     service::ServiceOptions opts;
     std::string why;
-    if (auto l = args.value("listen")) {
-        opts.listen = service::parseListenAddress(*l, why);
+    std::unique_ptr<KioskPlaylist> playlist;
+    if (config::isKioskFile(file)) {
+        auto kf = config::readKioskFile(file);
+        if (!kf) {
+            printDiagnostics(kf.diagnostics);
+            exitCode = kExitBadInput;
+            return nullptr;
+        }
+        playlist = std::make_unique<KioskPlaylist>(std::move(*kf.value));
+    }
+    std::optional<std::string> listen = args.value("listen");
+    if (!listen && playlist) listen = playlist->file().listen;
+    if (listen) {
+        opts.listen = service::parseListenAddress(*listen, why);
         if (!opts.listen) {
             std::fprintf(stderr, "geokiosk play: %s\n", why.c_str());
             exitCode = kExitUsage;
             return nullptr;
         }
     }
-    if (auto t = args.value("token-file")) {
+    std::optional<std::filesystem::path> token;
+    if (auto t = args.value("token-file")) token = *t;
+    if (!token && playlist) token = playlist->file().tokenFile;
+    if (token) {
         if (!opts.listen) {
             std::fprintf(stderr,
                          "geokiosk play: --token-file needs --listen (control is served "
@@ -41,9 +61,11 @@ std::unique_ptr<KioskHooks> KioskHooks::create(const Args& args, int& exitCode) 
             exitCode = kExitUsage;
             return nullptr;
         }
-        opts.tokenFile = *t;
+        opts.tokenFile = *token;
     }
     auto hooks = std::make_unique<KioskHooks>();
+    hooks->mPlaylist = std::move(playlist);
+    hooks->mFile = file;
     hooks->mService = service::KioskService::start(opts, why);
     if (!hooks->mService) {
         std::fprintf(stderr, "geokiosk play: %s\n", why.c_str());
@@ -73,10 +95,10 @@ KioskHooks::Requests KioskHooks::applyControl(anim::ScenarioClock& clock) {
                 clock.setRate(c.rate);
                 break;
             case service::ControlAction::Next:
-                r.playlistStep = 1;
+                r.playlistStep = mPendingStep = 1;
                 break;
             case service::ControlAction::Previous:
-                r.playlistStep = -1;
+                r.playlistStep = mPendingStep = -1;
                 break;
             case service::ControlAction::Reload:
                 r.reload = true;
@@ -110,10 +132,79 @@ void KioskHooks::frameDone(Session& session, const anim::ScenarioClock& clock,
                                                                              : "failed";
         s.layers[i].message = layers[i].message;
     }
-    s.scenario = scenario.string();
+    if (s.scenario != scenario.native()) s.scenario = scenario.native();  // no per-frame copy
+    // Store swap / deletion: watch the stores of whatever session is on screen (playlist entry,
+    // hot reload or swap re-open).
+    if (mWatched != &session) {
+        mStores.watch(session.scenario());
+        mWatched = &session;
+        s.storeFiles = mStores.files();
+    }
+    mAtStepBoundary = fi.shownFrameA != mLastShownFrame || fi.shownFrameA < 0 || clock.paused();
+    mLastShownFrame = fi.shownFrameA;
+    s.storeDegraded = mStores.degraded();
+    s.warnings.clear();
+    if (s.storeDegraded) s.warnings.push_back(mStores.degradedWhy());
+    if (mPlaylist) {
+        s.playlistIndex = mPlaylist->index();
+        s.playlistLength = mPlaylist->size();
+        s.playlistSkipped = mPlaylist->skipped();
+        for (auto& w : mPlaylist->warnings()) s.warnings.push_back(std::move(w));
+    }
     s.dataTime = dataTime;
     s.paused = clock.paused();
     mService->frameCompleted(frameMs);
+}
+
+Result<std::unique_ptr<Session>> KioskHooks::openFirst(const gl::Caps& caps) {
+    if (!mPlaylist) return Session::open(mFile, caps);
+    Diagnostics errors;
+    auto s = mPlaylist->open(0, caps, errors);
+    if (s) return Result<std::unique_ptr<Session>>(std::move(s));
+    if (errors.empty())
+        errors.error("KIOSK_NOTHING_TO_PLAY", mFile.string(), "/playlist",
+                     "no entry can play now (every entry broken or outside its window)");
+    return Result<std::unique_ptr<Session>>(std::move(errors));
+}
+
+std::unique_ptr<Session> KioskHooks::nextSession(const anim::ScenarioClock& clock,
+                                                 const gl::Caps& caps) {
+    mKeepTime = false;
+    const double now = service::monotonicSeconds();
+    mStores.poll(now);
+    if (mStores.swapReady() && mAtStepBoundary) {
+        // A new model run: the same scenario on the replaced store, from the same data time.
+        auto next = mPlaylist ? mPlaylist->reopen(caps) : Session::open(mFile, caps);
+        noteReload(next.ok());
+        mWatched = nullptr;  // watch the new files (also after a failure: no retry loop)
+        if (!next) {
+            for (const auto& d : next.diagnostics.items())
+                KIOSK_LOG_ERROR(kTag, "replaced store refused, keeping the old picture: %s",
+                                d.format().c_str());
+            return nullptr;
+        }
+        ++mService->snapshot().storeSwaps;
+        mKeepTime = true;
+        return std::move(*next.value);
+    }
+    if (!mPlaylist) return nullptr;
+    const int step = mPendingStep != 0 ? mPendingStep : (mPlaylist->finished(clock) ? 1 : 0);
+    mPendingStep = 0;
+    if (step == 0) return nullptr;
+    if (now < mRetryAt) return nullptr;
+    Diagnostics errors;
+    auto s = mPlaylist->open(step, caps, errors);
+    // Nothing else can play: keep the picture and try again in a while, not every frame.
+    if (!s) mRetryAt = now + kRetrySeconds;
+    return s;
+}
+
+std::filesystem::path KioskHooks::currentScenario() const {
+    return mPlaylist ? mPlaylist->currentScenario() : mFile;
+}
+
+float KioskHooks::curtain() const {
+    return mPlaylist ? mPlaylist->curtain() : 0.0f;
 }
 
 void KioskHooks::noteReload(bool ok) {

@@ -2,6 +2,10 @@
 
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
+#include "runtime/app/KioskPlaylist.h"
+#include "runtime/app/StoreWatch.h"
+#include "runtime/core/Result.h"
+#include "runtime/gl/Context.h"
 #include "runtime/service/KioskService.h"
 
 #include <filesystem>
@@ -25,7 +29,26 @@ public:
      * @brief From parsed arguments; nullptr on a usage error (exit 2, message printed) or when
      * the server cannot start (exit 3).
      */
-    static std::unique_ptr<KioskHooks> create(const Args& args, int& exitCode);
+    static std::unique_ptr<KioskHooks> create(const Args& args, const std::filesystem::path& file,
+                                              int& exitCode);
+
+    /**
+     * @brief The first session: the scenario `file`, or for a kiosk file its first playable
+     * entry. Failure diagnostics name the file (exit 1).
+     */
+    Result<std::unique_ptr<Session>> openFirst(const gl::Caps& caps);
+    /**
+     * @brief The session to switch to, else nullptr (keep the current one): for playlists the
+     * next playable entry when the one on screen is done or next/previous was requested; for a
+     * store replaced on disk (StoreWatch) the same scenario re-opened at a step boundary.
+     */
+    std::unique_ptr<Session> nextSession(const anim::ScenarioClock& clock, const gl::Caps& caps);
+    /** @brief The last switch re-opened the same scenario (store swap): keep the data time. */
+    bool keepsDataTime() const noexcept { return mKeepTime; }
+    /** @brief Scenario file on screen (the one hot reload watches). */
+    std::filesystem::path currentScenario() const;
+    /** @brief Fade curtain for this frame (0 without a playlist fade). */
+    float curtain() const;
 
     /** @brief What the frame loop must do besides the clock changes already applied. */
     struct Requests {
@@ -52,7 +75,16 @@ public:
 
 private:
     std::unique_ptr<service::KioskService> mService;
+    std::unique_ptr<KioskPlaylist> mPlaylist;
+    std::filesystem::path mFile;
     std::filesystem::path mStallFile;
+    int mPendingStep = 0;
+    StoreWatch mStores;
+    const Session* mWatched = nullptr;  ///< session whose stores mStores watches
+    bool mAtStepBoundary = true;        ///< the shown sequence step changed (or none, paused)
+    std::int32_t mLastShownFrame = -2;
+    bool mKeepTime = false;
+    double mRetryAt = 0;  ///< after a failed switch, the next attempt (monotonic seconds)
 };
 
 }  // namespace kiosk::app

@@ -65,7 +65,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     Args args("play", valueOptions, {"windowed"});
     if (!args.parse(argv)) return usage(args.error());
     if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
-    const std::filesystem::path scenarioPath = args.positionals()[0];
+    std::filesystem::path scenarioPath = args.positionals()[0];
     platform::DisplayOptions dopts;
     if (auto d = args.value("display")) {
         auto kind = platform::parseDisplayKind(*d);
@@ -104,6 +104,11 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         return kExitBadInput;
     }
 
+    // A kiosk file (playlist) or a scenario; systemd notify and the HTTP service.
+    int kioskExit = kExitOk;
+    auto kiosk = KioskHooks::create(args, scenarioPath, kioskExit);
+    if (!kiosk) return kioskExit;
+
     auto display = platform::createDisplay(dopts);
     if (!display) {
         printDiagnostics(display.diagnostics);
@@ -116,12 +121,13 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         return kExitCannotRun;
     }
     KIOSK_LOG_INFO(kTag, "%s, %s", dpy.describe().c_str(), caps->renderer.c_str());
-    auto opened = Session::open(scenarioPath, *caps);
+    auto opened = kiosk->openFirst(*caps);
     if (!opened) {
         printDiagnostics(opened.diagnostics);
         return kExitBadInput;
     }
     std::unique_ptr<Session> session = std::move(*opened.value);
+    scenarioPath = kiosk->currentScenario();
     std::optional<gl::RenderTarget> offscreen;
     if (!dpy.hasSurface()) {
         auto rt = gl::RenderTarget::create(dpy.width(), dpy.height());
@@ -133,9 +139,6 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     }
 
     installStopSignals();
-    int kioskExit = kExitOk;
-    auto kiosk = KioskHooks::create(args, kioskExit);
-    if (!kiosk) return kioskExit;
     RealClock wall;
     anim::ScenarioClock clock = makeClock(*session);
     auto watched = session->scenario().sourceFiles;
@@ -150,6 +153,19 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         kiosk->stallWhileTestFileExists();
         // Remote control (pause/play/seek/rate act on the clock; reload re-opens at the poll).
         if (kiosk->applyControl(clock).reload) watchedStamps.clear();
+        // Playlists: the next entry when this one is done (or next/previous was asked for);
+        // a store replaced on disk: the same scenario re-opened on it at a step boundary.
+        if (auto next = kiosk->nextSession(clock, *caps)) {
+            session = std::move(next);
+            const double was = clock.current();
+            clock = makeClock(*session);
+            if (kiosk->keepsDataTime()) clock.seek(was);
+            scenarioPath = kiosk->currentScenario();
+            watched = session->scenario().sourceFiles;
+            watchedStamps = stamps(watched);
+            manual.reset();
+        }
+        session->setCurtain(kiosk->curtain());
         const double now = wall.now();
         const double dt = now - last;
         last = now;

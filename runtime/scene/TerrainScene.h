@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -49,6 +50,8 @@ struct SceneFrameInfo {
     std::uint32_t requests = 0;
     std::uint32_t uploads = 0;
     bool holdingSequence = false;  ///< a sequence shows an older complete frame pair
+    /** @brief While holding with a pair on screen: the data time that pair shows (else NaN). */
+    double heldDataTime = std::numeric_limits<double>::quiet_NaN();
     /** @brief Tiles of one sequence drew different frames (must never happen: atomic steps). */
     bool mixedSequenceFrames = false;
     std::int32_t shownFrameA = -1;  ///< first sequence layer: frames on screen (-1: none)

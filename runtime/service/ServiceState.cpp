@@ -35,6 +35,11 @@ HealthVerdict evaluateHealth(const ServiceSnapshot& s, double now, double stallS
             degraded.push_back({{"layer", l.id}, {"state", l.state}, {"message", l.message}});
     body["degraded_layers"] = degraded;
     body["store_degraded"] = s.storeDegraded;
+    body["store_swaps"] = s.storeSwaps;
+    nlohmann::json stores = nlohmann::json::array();
+    for (const auto& [path, inode] : s.storeFiles)
+        stores.push_back({{"path", path}, {"inode", inode}});
+    body["stores"] = stores;
     body["warnings"] = s.warnings;
     return {reason.empty() ? 200 : 503, body.dump()};
 }
@@ -79,6 +84,11 @@ std::string renderMetrics(const ServiceSnapshot& s, const ProcessFigures& proces
     w.sample(double(s.reloads));
     w.family("geokiosk_reload_failures_total", "Scenario or store reloads refused.", T::Counter);
     w.sample(double(s.reloadFailures));
+    w.family("geokiosk_store_swaps_total", "Stores replaced on disk and taken over.", T::Counter);
+    w.sample(double(s.storeSwaps));
+    w.family("geokiosk_store_degraded", "1 while a store file is missing (picture kept).",
+             T::Gauge);
+    w.sample(s.storeDegraded ? 1.0 : 0.0);
     w.family("geokiosk_playlist_position", "Index of the playlist entry on screen (-1: none).",
              T::Gauge);
     w.sample(double(s.playlistIndex));

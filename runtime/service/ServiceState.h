@@ -48,6 +48,8 @@ struct ServiceSnapshot {
     double fps = 0;        ///< over the last second
     bool paused = false;
     bool storeDegraded = false;
+    std::uint64_t storeSwaps = 0;  ///< stores replaced on disk and taken over
+    std::vector<std::pair<std::string, std::uint64_t>> storeFiles;  ///< path, inode on screen
     std::vector<std::string> warnings;  ///< e.g. skipped playlist entries (shown by /health)
 };
 
