@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Kiosk benchmarks (issue 15), each printing ONE JSON object with its same-run baseline:
 
-  soak     FRAMES frames of the demo (looping clock and camera path) at 64x36 headless, a scenario
-           reload (POST /control/reload) every RELOAD frames; RSS after warm-up (the baseline) vs
+  soak     FRAMES frames of the demo (looping clock and camera path) at 64x36 headless from a
+           kiosk file with 16 MiB cache budgets, a scenario reload (POST /control/reload, taken at
+           the next 0.5 s poll) every RELOAD frames; RSS after warm-up (the baseline) vs
            at the end. Goal: growth < 2 MB over 1,000,000 frames. --bound-mb makes it a test.
   restart  kill -9 of a running kiosk, then process start -> READY=1 (sd_notify), median of 5;
            baseline: the first, cold start of the same run.
@@ -50,11 +51,17 @@ def soak(a, tmp):
     token = os.path.join(tmp, "token")
     with open(token, "w") as f:
         f.write("bench\n")
-    k = Kiosk(a.geokiosk, [DEMO, "--display", "headless", "--size", "64x36", "--frames",
-                           str(a.frames), "--listen", "127.0.0.1:0", "--token-file", token],
-              gl_env(), os.path.join(tmp, "log"))
+    # A kiosk file with small per-kiosk cache budgets: the caches reach their budget during the
+    # warm-up, so growth after it is what the budgets do not cover (leaks, unbounded lists).
+    kiosk = os.path.join(tmp, "kiosk.json")
+    with open(kiosk, "w") as f:
+        json.dump({"playlist": [{"scenario": os.path.abspath(DEMO), "duration": "300d"}],
+                   "listen": "127.0.0.1:0", "tokenFile": token,
+                   "budgets": {"cacheBytes": a.budget_mb << 20, "gpuBytes": a.budget_mb << 20}}, f)
+    k = Kiosk(a.geokiosk, [kiosk, "--display", "headless", "--size", "64x36", "--frames",
+                           str(a.frames)], gl_env(), os.path.join(tmp, "log"))
     k.wait_port()
-    warm_at = max(a.frames // 5, min(a.reload * 2, a.frames // 2))
+    warm_at = max(int(a.frames * 0.4), min(a.reload * 2, a.frames // 2))
     next_reload, warm, last = a.reload, None, None
     started = time.monotonic()
     while k.proc.poll() is None:
@@ -78,7 +85,7 @@ def soak(a, tmp):
     rc = k.stop()
     growth = (end["geokiosk_resident_memory_bytes"] - warm["geokiosk_resident_memory_bytes"]) / 2**20
     result = {"benchmark": "kiosk_soak", "frames": int(end["geokiosk_frames_total"]),
-              "size": "64x36", "reload_every": a.reload,
+              "size": "64x36", "reload_every": a.reload, "cache_budgets_mb": a.budget_mb,
               "reloads": int(end["geokiosk_reloads_total"]),
               "reload_failures": int(end["geokiosk_reload_failures_total"]),
               "baseline_rss_mb_after_warmup": round(warm["geokiosk_resident_memory_bytes"] / 2**20, 2),
@@ -170,6 +177,7 @@ def main():
     p.add_argument("--reload", type=int, default=10000)
     p.add_argument("--bound-mb", type=float)
     p.add_argument("--seconds", type=float, default=5.0)
+    p.add_argument("--budget-mb", type=int, default=16)
     a = p.parse_args()
     a.geokiosk = os.path.abspath(a.geokiosk)
     os.chdir(a.root)
