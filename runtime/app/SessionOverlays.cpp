@@ -6,6 +6,7 @@
 #include "runtime/render/Textures.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace kiosk::app {
 namespace {
@@ -65,10 +66,15 @@ void Session::drawOverlays(double time, int width, int height) {
     mLayout.begin(width, height, kMargin, kGap);
     // The time label is placed first: when it and the title share an edge and do not fit side
     // by side (narrow previews, long titles), the title moves clear of it.
+    // Tiles late: a sequence holds an older step. Label the time actually drawn and say so.
+    const auto& frameInfo = mScene->frameInfo();
+    const bool buffering = frameInfo.holdingSequence;
+    if (buffering && !std::isnan(frameInfo.heldDataTime)) time = frameInfo.heldDataTime;
     if (ov.timeLabel.enabled && mEnd > mStart) {
         char buf[128];
         anim::formatTimeLabel(buf, sizeof buf, time, mStart, ov.timeLabel.format, mZone);
         std::string label = buf;
+        if (buffering) label += "  buffering";
         if (ov.timeLabel.showOffset && label.find("T+") == std::string::npos &&
             label.find("T-") == std::string::npos)
             label += "  (" + anim::formatElapsed(time - mStart) + ")";
@@ -113,6 +119,7 @@ void Session::drawOverlays(double time, int width, int height) {
         statusLine(text, st.state == scene::LayerState::Ready ? kDim : kWarn);
     }
     drawCaption(width, height);
+    if (mCurtain > 0.0f) o.rect(0, 0, float(width), float(height), glm::vec4(0, 0, 0, mCurtain));
     o.end();
 }
 
