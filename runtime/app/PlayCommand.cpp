@@ -126,6 +126,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         dopts.height = wh->second;
     }
     dopts.windowed = args.flag("windowed");
+    dopts.shouldStop = stopRequested;
     dopts.connector = args.value("connector").value_or("");
     dopts.drmDevice = args.value("drm-device").value_or("");
     double maxFps = 0;
