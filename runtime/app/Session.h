@@ -16,6 +16,7 @@
 #include "runtime/core/Result.h"
 #include "runtime/gl/Context.h"
 #include "runtime/render/OverlayLayout.h"
+#include "runtime/gl/RenderTarget.h"
 #include "runtime/render/OverlayRenderer.h"
 #include "runtime/scene/TerrainScene.h"
 
@@ -76,6 +77,13 @@ public:
     /** @brief Update tiles for the view and draw terrain + overlays into the bound framebuffer. */
     FrameRecord drawFrame(const math::Camera& camera, double time, int width, int height);
 
+    /**
+     * @brief Fraction of the output size (per axis) the terrain is rendered at, then stretched
+     * (the frame-rate governor's last lever; `play` only). 1 = full size.
+     */
+    void setRenderScale(double scale);
+    double renderScale() const noexcept { return mRenderScale; }
+
 private:
     Session() = default;
     void drawOverlays(double time, int width, int height);
@@ -86,6 +94,7 @@ private:
     void setupBriefing();
     std::vector<anim::ChapterSpan> computeChapterSpans() const;
     std::optional<math::Viewpoint> chapterViewpoint(double time) const;
+    bool bindScaledTarget(int width, int height, int& outFbo);
 
     std::unique_ptr<config::Scenario> mScenario;
     std::unique_ptr<scene::TerrainScene> mScene;
@@ -104,6 +113,8 @@ private:
     std::vector<anim::ChapterSpan> mChapterSpans;
     int mChapter = -1;
     int mCaptionChapter = -1, mCaptionWidth = 0, mCaptionFontPx = 0;  ///< what mCaptionLines wraps
+    double mRenderScale = 1.0;
+    std::optional<gl::RenderTarget> mScaled;  ///< terrain target while mRenderScale < 1
 };
 
 /** @brief Camera for a viewpoint with clip planes fitted to the scene. */

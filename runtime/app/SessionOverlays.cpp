@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace kiosk::app {
 namespace {
@@ -111,6 +112,20 @@ void Session::drawOverlays(double time, int width, int height) {
     };
     if (!mNotice.empty())
         statusLine(mNotice.size() > 160 ? mNotice.substr(0, 157) + "..." : mNotice, kWarn);
+    // The frame-rate governor at work (play): say what it trades, so nobody mistakes the
+    // coarser picture for the scenario's.
+    const bool governed = sc.terrain.reference == config::TerrainReference::Lod &&
+                          (mScene->tauGeom() != sc.terrain.tauGeom ||
+                           mScene->tauTex() != sc.terrain.tauTex || mRenderScale < 1.0);
+    if (governed) {
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "frame-rate governor: tauGeom %.3g px (scenario %.3g), tauTex %.3g px (%.3g), "
+                      "render scale %.2f",
+                      mScene->tauGeom(), sc.terrain.tauGeom, mScene->tauTex(), sc.terrain.tauTex,
+                      mRenderScale);
+        statusLine(text, kDim);
+    }
     for (const auto& st : mScene->layerStatus()) {
         if (st.state == scene::LayerState::Ready && !ov.status.enabled) continue;
         std::string text = st.id + ": " + scene::layerStateName(st.state);
