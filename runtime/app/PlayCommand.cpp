@@ -241,7 +241,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             auto current = stamps(watched);
             if (current != watchedStamps) {
                 watchedStamps = current;
-                auto next = Session::open(scenarioPath, *caps);
+                auto next = kiosk->reopen(*caps);  // same file, with the kiosk's budgets
                 if (next) {
                     session = std::move(*next.value);
                     clock = makeClock(*session);
