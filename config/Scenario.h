@@ -38,12 +38,17 @@ struct SourceRef {
     std::string sequence;  ///< a time-keyed sequence of the store, or empty
 };
 
+/** @brief What the terrain draws: the error-bounded LOD, or every post (fidelity checks). */
+enum class TerrainReference { Lod, Full };
+
 struct Terrain {
     std::string store;
     std::string elevation = "elevation";
     double tauGeom = 2.0;  ///< screen-space geometric error threshold, pixels
     double tauTex = 1.0;   ///< texture error threshold, pixels
     double verticalExaggeration = 1.0;
+    /** @brief Full: the finest level everywhere with exact meshes (tauGeom/tauTex unused). */
+    TerrainReference reference = TerrainReference::Lod;
     std::int64_t cacheBytes = 512ll << 20;  ///< CPU tile cache budget
     std::int64_t gpuBytes = 256ll << 20;    ///< resident texture/mesh budget
     std::string pointer = "/terrain";
@@ -270,7 +275,45 @@ struct Lighting {
     std::optional<double> latitude, longitude;  ///< degrees, north / east positive
 };
 
+/** @brief A chapter's override of one layer of the stack (briefing). */
+struct ChapterLayer {
+    std::string layer;              ///< id of a layer of the stack
+    std::optional<bool> enabled;    ///< false hides it for the chapter
+    std::optional<double> opacity;  ///< replaces the layer's operation opacity
+    std::string pointer;
+};
+
+/** @brief One chapter of a briefing: what data time it shows, from where, with which layers. */
+struct Chapter {
+    std::string title;
+    TimeSpec from, to;              ///< equal for a chapter showing a single time
+    bool span = false;              ///< given as "from"/"to" (else "time")
+    std::optional<double> duration; ///< playback seconds (default: the span at the clock rate, or 5)
+    std::string viewpoint;          ///< a named viewpoint, or
+    std::string path;               ///< a named camera path (tour); neither: the scenario camera
+    std::vector<ChapterLayer> layers;
+    std::string caption;            ///< may hold several lines ("\n")
+    bool pause = false;             ///< play holds at the chapter's end until "next"
+    std::string pointer;
+};
+
+/** @brief Ordered chapters played by `play` and exported back to back by `render`. */
+struct Briefing {
+    std::vector<Chapter> chapters;
+};
+
 /** @brief A whole scenario after includes were merged and every reference resolved. */
+/**
+ * @brief The frame-rate governor of `play` (docs/animation.md): holds `targetFps` by raising
+ * tauGeom/tauTex up to `maxTauFactor` times the scenario's, then lowering the render scale down
+ * to `minRenderScale`. `render` never uses it. targetFps 0 = off.
+ */
+struct Governor {
+    double targetFps = 0.0;
+    double maxTauFactor = 4.0;
+    double minRenderScale = 0.5;
+};
+
 struct Scenario {
     int version = kScenarioVersion;
     std::string title;
@@ -287,6 +330,8 @@ struct Scenario {
     Camera camera;
     Overlays overlays;
     Lighting lighting;
+    std::optional<Briefing> briefing;
+    Governor governor;
 
     /** @brief The scenario file first, then every included or referenced file (hot reload). */
     std::vector<std::filesystem::path> sourceFiles;

@@ -1,5 +1,6 @@
 #include "config/ScenarioReader.h"
 
+#include "config/BriefingReader.h"
 #include "config/DocumentLoader.h"
 #include "config/Limits.h"
 #include "config/PathPolicy.h"
@@ -29,9 +30,10 @@ const std::map<std::string, std::vector<std::string>>& propertyTable() {
         {"Scenario",
          {"$schema", "version", "include", "title", "caption", "stores", "terrain", "layers",
           "transferFunctions", "clock", "lenses", "projectiveMappings", "viewpoints", "cameraPaths",
-          "camera", "overlays", "lighting"}},
+          "camera", "overlays", "lighting", "governor", "briefing"}},
+        {"Governor", {"targetFps", "maxTauFactor", "minRenderScale"}},
         {"Terrain",
-         {"store", "elevation", "tauGeom", "tauTex", "verticalExaggeration", "cacheBytes",
+         {"store", "elevation", "tauGeom", "tauTex", "verticalExaggeration", "reference", "cacheBytes",
           "gpuBytes"}},
         {"Layer",
          {"id", "kind", "source", "transfer", "operation", "enabled", "interpolate", "nodataAs"}},
@@ -65,6 +67,11 @@ const std::map<std::string, std::vector<std::string>>& propertyTable() {
         {"SimpleOverlay", {"enabled", "position"}},
         {"Lighting", {"sunAzimuth", "sunAltitude", "ambient", "keys", "solar", "latitude", "longitude"}},
         {"LightingKey", {"time", "sunAzimuth", "sunAltitude"}},
+        {"Briefing", {"chapters"}},
+        {"Chapter",
+         {"title", "time", "from", "to", "duration", "viewpoint", "path", "layers", "caption",
+          "pause"}},
+        {"ChapterLayer", {"enabled", "opacity"}},
     };
     return table;
 }
@@ -460,6 +467,8 @@ const EnumTable<OperationType> kOperations = {
     {"opacity", OperationType::Opacity}, {"blend", OperationType::Blend},
     {"add", OperationType::Add},         {"modulate", OperationType::Modulate},
     {"mask", OperationType::Mask},       {"replace", OperationType::Replace}};
+const EnumTable<TerrainReference> kTerrainReferences = {{"lod", TerrainReference::Lod},
+                                                        {"full", TerrainReference::Full}};
 const EnumTable<SequenceInterpolation> kInterpolations = {
     {"data", SequenceInterpolation::Data},
     {"none", SequenceInterpolation::None},
@@ -532,6 +541,7 @@ public:
         if (const json* j = o.get("camera")) camera(*j);
         if (const json* j = o.get("overlays")) overlays(*j);
         if (const json* j = o.get("lighting")) lighting(*j);
+        if (const json* j = o.get("governor")) governor(*j);
         crossReferences();
     }
 
@@ -563,6 +573,7 @@ private:
         assign(t.tauGeom, o.num("tauGeom", tau));
         assign(t.tauTex, o.num("tauTex", tau));
         assign(t.verticalExaggeration, o.num("verticalExaggeration", Range{0, 100, true, false}));
+        assign(t.reference, o.oneOf("reference", kTerrainReferences));
         if (const json* b = o.get("cacheBytes"))
             assign(t.cacheBytes, readBytes(mC, *b, o.at("cacheBytes")));
         if (const json* b = o.get("gpuBytes"))
@@ -1097,6 +1108,15 @@ private:
         return (tz[0] == '-' ? -1 : 1) * (hours * 60 + minutes);
     }
 
+    void governor(const json& j) {
+        Obj o(mC, j, "/governor", "Governor");
+        if (!o.valid()) return;
+        Governor& g = mS.governor;
+        assign(g.targetFps, o.num("targetFps", Range{0, 240}));
+        assign(g.maxTauFactor, o.num("maxTauFactor", Range{1, 16}));
+        assign(g.minRenderScale, o.num("minRenderScale", Range{0.25, 1}));
+    }
+
     void lighting(const json& j) {
         Obj o(mC, j, "/lighting", "Lighting");
         if (!o.valid()) return;
@@ -1300,6 +1320,7 @@ Result<Scenario> build(LoadedDocument doc, Diagnostics diags,
         for (auto it = tfs->begin(); it != tfs->end(); ++it)
             reader.mDeclaredTransfers.push_back(it.key());
     reader.root(doc.value);
+    readBriefing(doc.value, s, diags);  // config/BriefingReader.cpp
     for (auto& f : reader.mFiles)
         if (std::find(s.sourceFiles.begin(), s.sourceFiles.end(), f) == s.sourceFiles.end())
             s.sourceFiles.push_back(f);

@@ -1,9 +1,21 @@
 #include "runtime/app/PlayCommand.h"
 
+#include <chrono>
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <thread>
+
+#include "runtime/anim/BriefingPlayer.h"
+#include "runtime/anim/FrameGovernor.h"
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
+#include "runtime/app/BriefingControl.h"
+#include "runtime/app/KioskHooks.h"
 #include "runtime/app/Report.h"
-#include "runtime/app/ScenarioReloader.h"
 #include "runtime/app/Session.h"
 #include "runtime/app/Signals.h"
 #include "runtime/core/Clock.h"
@@ -14,14 +26,6 @@
 #include "runtime/gl/RenderTarget.h"
 #include "runtime/platform/Display.h"
 
-#include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <optional>
-#include <thread>
-
 namespace kiosk::app {
 namespace {
 
@@ -31,13 +35,60 @@ constexpr double kReloadPollSeconds = 0.5;
 /** How far ahead (wall seconds) the camera path is sampled for prefetching. */
 constexpr double kPrefetchSeconds = 2.0;
 
+/**
+ * Test hook: GEOKIOSK_TEST_FRAME_COST_MS=MS[:FRAMES] adds an artificial cost to each of the
+ * first FRAMES frames (all when omitted), modelled on a fill-bound frame: MS at the scenario's
+ * settings, times the rendered fraction of the pixels and the scenario's tauGeom over the one
+ * used. Lets the governor be tested on any machine (tests/scenario/GovernorPlayTest).
+ */
+class TestFrameCost {
+public:
+    TestFrameCost() {
+        const char* v = std::getenv("GEOKIOSK_TEST_FRAME_COST_MS");
+        if (!v || !*v) return;
+        char* end = nullptr;
+        mMs = std::strtod(v, &end);
+        if (end && *end == ':') mFrames = std::strtol(end + 1, nullptr, 10);
+        if (!(mMs > 0)) mMs = 0;
+    }
+    void spend(long frame, Session& s) const {
+        if (mMs <= 0 || (mFrames >= 0 && frame >= mFrames)) return;
+        const double scale = s.renderScale();
+        const double tau = s.scenario().terrain.tauGeom / std::max(1e-9, s.terrain().tauGeom());
+        const double ms = mMs * scale * scale * tau;
+        std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(ms));
+    }
+
+private:
+    double mMs = 0;
+    long mFrames = -1;
+};
+
 int usage(const std::string& message) {
     std::fprintf(stderr,
                  "geokiosk play: %s\nusage: geokiosk play SCENARIO [--display "
                  "auto|kms|x11|wayland|headless] [--size WxH] [--windowed] [--max-fps N] "
-                 "[--frames N] [--connector NAME] [--drm-device PATH]\n",
+                 "[--frames N] [--connector NAME] [--drm-device PATH] [--listen HOST:PORT] "
+                 "[--token-file FILE] [--target-fps N] [--stats STATS.json]\n",
                  message.c_str());
     return kExitUsage;
+}
+
+/** Modification stamps of the scenario and everything it includes. */
+std::vector<std::filesystem::file_time_type> stamps(const std::vector<std::filesystem::path>& files) {
+    std::vector<std::filesystem::file_time_type> out;
+    for (const auto& f : files) {
+        std::error_code ec;
+        out.push_back(std::filesystem::last_write_time(f, ec));
+    }
+    return out;
+}
+
+/** A briefing plays its chapters instead of the clock (and starts on its first chapter). */
+std::optional<anim::BriefingPlayer> makeBriefing(Session& s) {
+    if (!s.scenario().briefing) return std::nullopt;
+    s.setChapter(0);
+    return anim::BriefingPlayer(s.chapterSpans());
 }
 
 anim::ScenarioClock makeClock(const Session& s) {
@@ -45,14 +96,27 @@ anim::ScenarioClock makeClock(const Session& s) {
     return clock ? *clock.value : anim::ScenarioClock();
 }
 
+/** The scenario's governor, `--target-fps` overriding its frame rate. */
+anim::FrameGovernor makeGovernor(const Session& s, std::optional<double> targetFps) {
+    const config::Governor& g = s.scenario().governor;
+    anim::GovernorSettings gs;
+    gs.targetFps = targetFps.value_or(g.targetFps);
+    gs.maxTauFactor = g.maxTauFactor;
+    gs.minRenderScale = g.minRenderScale;
+    return anim::FrameGovernor(gs, s.scenario().terrain.tauGeom, s.scenario().terrain.tauTex);
+}
+
 }  // namespace
 
 int runPlayCommand(const std::vector<std::string>& argv) {
-    Args args("play", {"display", "size", "max-fps", "frames", "connector", "drm-device"},
-              {"windowed"});
+    std::vector<std::string> valueOptions = {"display",   "size",      "max-fps",
+                                             "frames",    "connector", "drm-device",
+                                             "target-fps", "stats"};
+    for (const auto& o : KioskHooks::optionNames()) valueOptions.push_back(o);
+    Args args("play", valueOptions, {"windowed"});
     if (!args.parse(argv)) return usage(args.error());
     if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
-    const std::filesystem::path scenarioPath = args.positionals()[0];
+    std::filesystem::path scenarioPath = args.positionals()[0];
     platform::DisplayOptions dopts;
     if (auto d = args.value("display")) {
         auto kind = platform::parseDisplayKind(*d);
@@ -71,6 +135,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         dopts.height = wh->second;
     }
     dopts.windowed = args.flag("windowed");
+    dopts.shouldStop = stopRequested;
     dopts.connector = args.value("connector").value_or("");
     dopts.drmDevice = args.value("drm-device").value_or("");
     double maxFps = 0;
@@ -78,6 +143,13 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         char* end = nullptr;
         maxFps = std::strtod(f->c_str(), &end);
         if (end == f->c_str() || *end || !(maxFps > 0)) return usage("--max-fps wants a positive number");
+    }
+    std::optional<double> targetFps;
+    if (auto f = args.value("target-fps")) {
+        char* end = nullptr;
+        targetFps = std::strtod(f->c_str(), &end);
+        if (end == f->c_str() || *end || !(*targetFps >= 0) || *targetFps > 240)
+            return usage("--target-fps wants a number of frames per second in 0..240 (0: off)");
     }
     long frameLimit = -1;
     if (auto f = args.value("frames")) {
@@ -91,6 +163,11 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         return kExitBadInput;
     }
 
+    // A kiosk file (playlist) or a scenario; systemd notify and the HTTP service.
+    int kioskExit = kExitOk;
+    auto kiosk = KioskHooks::create(args, scenarioPath, kioskExit);
+    if (!kiosk) return kioskExit;
+
     auto display = platform::createDisplay(dopts);
     if (!display) {
         printDiagnostics(display.diagnostics);
@@ -103,12 +180,13 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         return kExitCannotRun;
     }
     KIOSK_LOG_INFO(kTag, "%s, %s", dpy.describe().c_str(), caps->renderer.c_str());
-    auto opened = Session::open(scenarioPath, *caps);
+    auto opened = kiosk->openFirst(*caps);
     if (!opened) {
         printDiagnostics(opened.diagnostics);
         return kExitBadInput;
     }
     std::unique_ptr<Session> session = std::move(*opened.value);
+    scenarioPath = kiosk->currentScenario();
     std::optional<gl::RenderTarget> offscreen;
     if (!dpy.hasSurface()) {
         auto rt = gl::RenderTarget::create(dpy.width(), dpy.height());
@@ -122,46 +200,88 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     installStopSignals();
     RealClock wall;
     anim::ScenarioClock clock = makeClock(*session);
-    // Edits are read and checked on the reloader's thread; this loop only swaps in a result.
-    ScenarioReloader reloader(scenarioPath, session->scenario().sourceFiles, kReloadPollSeconds);
+    std::optional<anim::BriefingPlayer> briefing = makeBriefing(*session);
+    anim::FrameGovernor governor = makeGovernor(*session, targetFps);
+    TestFrameCost testCost;
+    std::optional<FrameStats> stats;
+    if (args.value("stats")) stats.emplace();
+    auto watched = session->scenario().sourceFiles;
+    auto watchedStamps = stamps(watched);
     KIOSK_LOG_INFO(kTag, "%s: playing, watching %zu files for edits", scenarioPath.c_str(),
-                   session->scenario().sourceFiles.size());
-    double last = wall.now();
+                   watched.size());
+    double lastPoll = wall.now(), last = wall.now();
     platform::InputState input;
     std::optional<math::Viewpoint> manual;  // set while the user steers the camera
     for (long frame = 0; frameLimit < 0 || frame < frameLimit; ++frame) {
         if (stopRequested()) break;
         dpy.pollInput(input);
         if (input.quitRequested) break;
+        kiosk->stallWhileTestFileExists();
+        // Remote control (pause/play/seek/rate act on the clock; reload re-opens at the poll).
+        if (kiosk->applyControl(clock).reload) watchedStamps.clear();
+        // Playlists: the next entry when this one is done (or next/previous was asked for);
+        // a store replaced on disk: the same scenario re-opened on it at a step boundary.
+        if (auto next = kiosk->nextSession(clock, *caps)) {
+            session = std::move(next);
+            const double was = clock.current();
+            clock = makeClock(*session);
+            briefing = makeBriefing(*session);
+            governor = makeGovernor(*session, targetFps);
+            if (kiosk->keepsDataTime()) clock.seek(was);
+            scenarioPath = kiosk->currentScenario();
+            watched = session->scenario().sourceFiles;
+            watchedStamps = stamps(watched);
+            manual.reset();
+        }
+        session->setCurtain(kiosk->curtain());
         const double now = wall.now();
         const double dt = now - last;
         last = now;
 
-        if (auto loaded = reloader.take()) {
-            // The GL half (scene, programs) stays here: it is bounded by the scenario limits.
-            auto next = loaded->ok() ? Session::create(std::move(*loaded->value), *caps)
-                                     : Result<std::unique_ptr<Session>>(loaded->diagnostics);
-            if (next) {
-                session = std::move(*next.value);
-                clock = makeClock(*session);
-                KIOSK_LOG_INFO(kTag, "%s: reloaded", scenarioPath.c_str());
-            } else {
-                // Keep the last good scenario on screen; say exactly why the edit was refused.
-                for (const auto& d : next.diagnostics.items())
-                    KIOSK_LOG_ERROR(kTag, "edit rejected, keeping the previous scenario: %s",
-                                    d.format().c_str());
-                if (const Diagnostic* e = next.diagnostics.firstError())
-                    session->setNotice("scenario edit rejected: " + e->format());
+        if (now - lastPoll >= kReloadPollSeconds) {
+            lastPoll = now;
+            auto current = stamps(watched);
+            if (current != watchedStamps) {
+                watchedStamps = current;
+                auto next = kiosk->reopen(*caps);  // same file, with the kiosk's budgets
+                if (next) {
+                    session = std::move(*next.value);
+                    clock = makeClock(*session);
+                    briefing = makeBriefing(*session);
+                    governor = makeGovernor(*session, targetFps);
+                    watched = session->scenario().sourceFiles;
+                    watchedStamps = stamps(watched);
+                    KIOSK_LOG_INFO(kTag, "%s: reloaded", scenarioPath.c_str());
+                    kiosk->noteReload(true);
+                } else {
+                    // Keep the last good scenario on screen; say exactly why the edit was refused.
+                    for (const auto& d : next.diagnostics.items())
+                        KIOSK_LOG_ERROR(kTag, "edit rejected, keeping the previous scenario: %s",
+                                        d.format().c_str());
+                    kiosk->noteReload(false);
+                    if (const Diagnostic* e = next.diagnostics.firstError())
+                        session->setNotice("scenario edit rejected: " + e->format());
+                }
             }
         }
 
-        if (input.togglePause) clock.paused() ? clock.resume() : clock.pause();
-        if (input.step != 0) {
-            const auto keys = session->terrain().sequenceKeyTimes();
-            input.step > 0 ? clock.stepToNextKey(keys) : clock.stepToPreviousKey(keys);
+        const int chapterSteps = takeChapterSteps();  // the control endpoint's next/previous
+        if (briefing) {
+            // In a briefing space resumes from a chapter's pause, . and , go to the next and
+            // previous chapter.
+            if (input.togglePause) briefing->togglePause();
+            for (int k = input.step + chapterSteps; k != 0; k += k > 0 ? -1 : 1)
+                k > 0 ? briefing->next() : briefing->previous();
+        } else {
+            if (input.togglePause) clock.paused() ? clock.resume() : clock.pause();
+            if (input.step != 0) {
+                const auto keys = session->terrain().sequenceKeyTimes();
+                input.step > 0 ? clock.stepToNextKey(keys) : clock.stepToPreviousKey(keys);
+            }
         }
         const bool ready = !session->terrain().frameInfo().holdingSequence;
-        const double t = clock.advance(dt, ready).time;
+        const double t = briefing ? briefing->advance(dt, ready) : clock.advance(dt, ready).time;
+        if (briefing && briefing->chapter() != session->chapterIndex()) session->setChapter(briefing->chapter());
         auto vp = session->viewpointAt(t, "");
         // Interactive control (when the scenario allows it): the first navigation key takes the
         // camera off its path from where it is; h / Home gives it back.
@@ -185,10 +305,24 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             offscreen->bind();
         else
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        session->setPlayback(scene::playbackOf(clock));
-        session->drawFrame(cam, t, w, h);
+        if (briefing) {
+            const anim::ChapterSpan& span = session->chapterSpans()[std::size_t(briefing->chapter())];
+            scene::Playback playback;
+            playback.rate = briefing->atPause() || briefing->userPaused() ? 0.0 : (span.to - span.from) / span.seconds;
+            playback.start = span.from;
+            playback.end = span.to;
+            session->setPlayback(playback);
+        } else {
+            session->setPlayback(scene::playbackOf(clock));
+        }
+        if (governor.state().active) {
+            session->terrain().setTau(governor.state().tauGeom, governor.state().tauTex);
+            session->setRenderScale(governor.state().renderScale);
+        }
+        FrameRecord rec = session->drawFrame(cam, t, w, h);
         // Camera paths are known in advance: ask for the tiles of the view two seconds ahead.
-        if (auto ahead = session->viewpointAt(clock.predict(kPrefetchSeconds), ""))
+        const double aheadTime = briefing ? briefing->timeAhead(kPrefetchSeconds) : clock.predict(kPrefetchSeconds);
+        if (auto ahead = session->viewpointAt(aheadTime, ""))
             session->terrain().prefetch(makeCamera(*ahead, session->terrain().bounds(), w, h,
                                                    session->scenario().camera.fovY));
         if (!dpy.swapBuffers()) {
@@ -196,10 +330,24 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             return kExitCannotRun;
         }
         if (offscreen) glFinish();
+        testCost.spend(frame, *session);
+        // The frame's cost as the viewer sees it (update, draw, present), not the --max-fps wait.
+        rec.frameMs = (wall.now() - now) * 1000.0;
+        governor.frameDone(rec.frameMs);
+        if (stats) stats->add(rec);
+        kiosk->frameDone(*session, clock, scenarioPath, rec.frameMs, t);
         if (maxFps > 0) {
             const double spent = wall.now() - now;
             const double wait = 1.0 / maxFps - spent;
             if (wait > 0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
+        }
+    }
+    kiosk->service().stopping();
+    if (stats) {
+        Diagnostics d;
+        if (!stats->write(*args.value("stats"), d)) {
+            printDiagnostics(d);
+            return kExitBadInput;
         }
     }
     KIOSK_LOG_INFO(kTag, "stopped cleanly");
