@@ -1,0 +1,28 @@
+#pragma once
+
+#include "runtime/math/Glm.h"
+#include "runtime/terrain/RtinMesher.h"
+
+#include <vector>
+
+namespace kiosk::terrain {
+
+/**
+ * @brief The heights a tile's TIN surface takes at the tile's posts: what the quadtree draws,
+ * read back as a regular grid (the warped detail grid samples it so the hand-over to the
+ * quadtree matches). Every surface triangle is scan-converted over the posts it covers;
+ * posts under no triangle (holes) are NaN. Pure; any thread.
+ */
+struct MeshPosts {
+    glm::dvec2 firstPost{0.0};  ///< world xy of post (0, 0): the tile's north-west post
+    glm::dvec2 spacing{1.0};    ///< metres (x east, y south)
+    int size = 0;               ///< posts per side
+    std::vector<float> z;       ///< row-major, row 0 north
+
+    /** @brief Bilinear height at world `p`; NaN outside the posts or next to a hole. */
+    double at(const glm::dvec2& p) const;
+};
+
+MeshPosts meshPosts(const TileMesh& mesh);
+
+}  // namespace kiosk::terrain
