@@ -46,6 +46,8 @@ struct Terrain {
     double verticalExaggeration = 1.0;
     std::int64_t cacheBytes = 512ll << 20;  ///< CPU tile cache budget
     std::int64_t gpuBytes = 256ll << 20;    ///< resident texture/mesh budget
+    /** @brief Procedural detail near the camera (decoration, labelled; docs/terrain.md §7). */
+    bool proceduralDetail = false;
     std::string pointer = "/terrain";
 };
 

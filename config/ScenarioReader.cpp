@@ -30,7 +30,7 @@ const std::map<std::string, std::vector<std::string>>& propertyTable() {
           "camera", "overlays", "lighting"}},
         {"Terrain",
          {"store", "elevation", "tauGeom", "tauTex", "verticalExaggeration", "cacheBytes",
-          "gpuBytes"}},
+          "gpuBytes", "proceduralDetail"}},
         {"Layer",
          {"id", "kind", "source", "transfer", "operation", "enabled", "interpolate", "nodataAs"}},
         {"Source", {"store", "layer", "sequence"}},
@@ -561,6 +561,7 @@ private:
             assign(t.cacheBytes, readBytes(mC, *b, o.at("cacheBytes")));
         if (const json* b = o.get("gpuBytes"))
             assign(t.gpuBytes, readBytes(mC, *b, o.at("gpuBytes")));
+        assign(t.proceduralDetail, o.boolean("proceduralDetail"));
     }
 
     std::optional<SourceRef> source(const json& j, const std::string& ptr) {

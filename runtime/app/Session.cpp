@@ -273,6 +273,14 @@ void Session::drawOverlays(double time, int width, int height) {
         o.text(20, y - 4, text, kWarn);
         y -= line + 8;
     }
+    if (mScene->frameInfo().proceduralDetail) {
+        // Decoration is labelled whenever it is on screen (docs/terrain.md §7).
+        const std::string text = "procedural detail: decoration below the data's resolution";
+        const float w = o.measure(text) + 16;
+        o.rect(12, y - line, w, line + 6, kPanel);
+        o.text(20, y - 4, text, kText);
+        y -= line + 8;
+    }
     for (const auto& st : mScene->layerStatus()) {
         if (st.state == scene::LayerState::Ready && !sc.overlays.status.enabled) continue;
         std::string text = st.id + ": " + scene::layerStateName(st.state);

@@ -78,6 +78,12 @@ struct CompositeProgramDesc {
      * saves the elevation LUT fetch per pixel (llvmpipe samples it even at weight 0).
      */
     bool elevationTint = true;
+    /**
+     * @brief The program of the warped detail grid (render/WarpedGridRenderer, vertex shader
+     * warpgrid.vert): procedural bump and texture detail, never where a data layer is valid
+     * (render/ProceduralDetailGlsl.h).
+     */
+    bool proceduralDetail = false;
 };
 
 /**

@@ -291,24 +291,26 @@ Diagnostics TerrainScene::buildRenderer() {
     if (!renderer) return renderer.diagnostics;
     mRenderer = std::make_unique<render::TerrainRenderer>(std::move(*renderer.value));
     mRenderer->setMappings(mMappingSet.get());
-    for (std::size_t k = 0; k < mLuts.size(); ++k) {
-        const SceneLut& lut = mLuts[k];
-        render::LutBinding b;
-        if (lut.function) {
-            b.domainMin = float(lut.function->domainMin);
-            b.domainMax = float(lut.function->domainMax);
-            b.nodata = toVec4(lut.function->nodata);
-            b.below = toVec4(lut.function->below);
-            b.above = toVec4(lut.function->above);
-        }
-        b.texture = lut.texture.id();
-        b.size = lut.size;
-        mRenderer->setLut(int(k), b);
-    }
+    for (std::size_t k = 0; k < mLuts.size(); ++k) mRenderer->setLut(int(k), lutBinding(k));
     // Without a hypsometric layer the terrain base is a neutral grey.
     const std::uint8_t base[8] = {200, 200, 195, 255, 200, 200, 195, 255};
     mRenderer->setElevationLut(2, base, 0.0f, 1.0f);
-    return {};
+    return buildDetailRenderer();
+}
+
+render::LutBinding TerrainScene::lutBinding(std::size_t k) const {
+    const SceneLut& lut = mLuts[k];
+    render::LutBinding b;
+    if (lut.function) {
+        b.domainMin = float(lut.function->domainMin);
+        b.domainMax = float(lut.function->domainMax);
+        b.nodata = toVec4(lut.function->nodata);
+        b.below = toVec4(lut.function->below);
+        b.above = toVec4(lut.function->above);
+    }
+    b.texture = lut.texture.id();
+    b.size = lut.size;
+    return b;
 }
 
 bool TerrainScene::setPositionOutput(bool on) {
@@ -548,6 +550,7 @@ void TerrainScene::bindLenses() {
         b.outsideGain = float(1.0 - lens.lower);
         b.enabled = lens.enabled;
         mRenderer->setLens(int(j), b);
+        if (mDetail) setDetailLens(int(j), b);
     }
 }
 
@@ -575,6 +578,7 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
     bindMappings(camera);
     auto& r = *mRenderer;
     r.counters().clear();
+    if (mDetail) planDetail(camera, r);  // the quadtree leaves a hole where the detail grid draws
     r.begin(camera, mSceneOrigin, style);
     // Front to back: llvmpipe's early depth test then skips shading hidden terrain.
     mDrawOrder.clear();
@@ -606,8 +610,10 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
             }
             b.strength = l.strength;
             r.setLayer(int(li), b);
+            if (mDetail) recordDetailTile(t, li, b);
             if (li == mFirstSequenceLayer) noteDrawnFrames(l, t);
         }
+        if (mDetail && detailHides(t)) continue;  // entirely under the detail grid
         bindTileMappings(p->key.id);
         if (t.clipped) {
             // Overlap the neighbours by a quarter post: with both clip edges on the same line,
@@ -635,6 +641,7 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
     mFrame.tilesDrawn = r.counters().tilesDrawn;
     mFrame.triangles = r.counters().triangles;
     mFrame.drawCalls = r.counters().drawCalls;
+    if (mDetail) drawDetail(camera, style);
 }
 
 math::Viewpoint TerrainScene::overviewViewpoint() const {

@@ -36,6 +36,15 @@ double DetailSketch::amplitudeAt(const glm::dvec2& p) const {
 }
 
 glm::dvec3 DetailSketch::normalAt(const glm::dvec2& p) const {
+    if (width >= 2 && height >= 2 && normals.size() >= std::size_t(width) * std::size_t(height)) {
+        const glm::dvec2 u = glm::clamp((p - min) / spacing, glm::dvec2(0.0), glm::dvec2(width - 1, height - 1));
+        const int x0 = std::min(int(u.x), width - 2), y0 = std::min(int(u.y), height - 2);
+        const double ax = u.x - x0, ay = u.y - y0;
+        const auto n = [&](int x, int y) { return glm::dvec3(normals[index(x, y)]); };
+        const glm::dvec3 v = (1 - ay) * ((1 - ax) * n(x0, y0) + ax * n(x0 + 1, y0)) +
+                             ay * ((1 - ax) * n(x0, y0 + 1) + ax * n(x0 + 1, y0 + 1));
+        if (glm::length(v) > 1e-9) return glm::normalize(v);
+    }
     const double e = spacing;
     const double dx = heightAt(p + glm::dvec2(e, 0)) - heightAt(p - glm::dvec2(e, 0));
     const double dy = heightAt(p + glm::dvec2(0, e)) - heightAt(p - glm::dvec2(0, e));

@@ -34,6 +34,8 @@ struct DetailSketch {
     std::vector<float> heights;
     std::vector<float> amplitude;  ///< metres, >= 0
     std::vector<float> cap;        ///< kDetailErrorFraction * E per post (input of amplitude)
+    /** @brief Optional: the drawn surface's normals at the posts (else from the heights). */
+    std::vector<glm::vec3> normals;
 
     glm::dvec2 max() const { return min + glm::dvec2(width - 1, height - 1) * spacing; }
     std::size_t index(int i, int j) const {

@@ -18,9 +18,12 @@ struct MeshPosts {
     glm::dvec2 spacing{1.0};    ///< metres (x east, y south)
     int size = 0;               ///< posts per side
     std::vector<float> z;       ///< row-major, row 0 north
+    std::vector<glm::vec3> n;   ///< the mesh's vertex normals interpolated the same way
 
     /** @brief Bilinear height at world `p`; NaN outside the posts or next to a hole. */
     double at(const glm::dvec2& p) const;
+    /** @brief Post (i, j) nearest to world `p` (clamped); false outside the posts. */
+    bool nearest(const glm::dvec2& p, int& i, int& j) const;
 };
 
 MeshPosts meshPosts(const TileMesh& mesh);

@@ -1,0 +1,88 @@
+#include "runtime/render/ProceduralDetailGlsl.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "runtime/gl/ShaderLibrary.h"
+#include "runtime/render/LayerStack.h"
+
+namespace kiosk::render {
+
+std::string ProceduralDetailGlsl::beforePrelude() {
+    return "#define vNormal vNormalDetail\n";
+}
+
+Result<std::string> ProceduralDetailGlsl::declarations() {
+    auto noise = gl::ShaderLibrary::source("common/detailnoise.glsl");
+    if (!noise) return noise.diagnostics;
+    std::ostringstream s;
+    s << "#undef vNormal\n"
+         "vec3 vNormal;  // shading normal, set at the start of main()\n"
+         "in vec3 vNormalData;\n"
+         "in float vDetailOffset;\n"
+         "in vec2 vDetailParam;  // (amplitude, split octave)\n"
+         "uniform float uDetailFreq;\n"
+         "uniform float uDetailTauTex;\n"
+      << *noise << "\n"
+      << R"(// Texture detail: octaves from 4 / d0 up, each faded out before it reaches 2 pixels
+// (clamping and fading), the whole faded in where a data texel exceeds tauTex on screen.
+float detailTexture(vec2 p) {
+    float mpp = max(length(fwidth(p)), 1e-4);
+    float texelPx = 1.0 / (uDetailFreq * mpp);
+    float show = clamp((texelPx - uDetailTauTex) / max(uDetailTauTex, 1e-3), 0.0, 1.0);
+    float g = 0.0;
+    for (int k = 1; k <= kDetailOctaves; ++k) {
+        float freq = uDetailFreq * exp2(float(k + 1));
+        float fade = clamp((1.0 / (freq * mpp) - 2.0) * 0.5, 0.0, 1.0);
+        g += fade * detailOctaveWeight(k) * detailNoise(p * freq + vec2(17.0, 31.0)).x;
+    }
+    return 1.0 + 0.18 * show * g;
+}
+)";
+    return s.str();
+}
+
+namespace {
+bool decoratedOver(const CompositeLayer& l) {
+    return (l.kind == LayerKind::Data || l.kind == LayerKind::Sequence) && !l.fromElevation;
+}
+}  // namespace
+
+std::vector<int> ProceduralDetailGlsl::sampleOrder(const CompositeProgramDesc& desc) {
+    std::vector<int> order;
+    const int n = int(desc.layers.size());
+    for (int pass = 0; pass < 2; ++pass)
+        for (int i = 0; i < n; ++i) {
+            const bool first = desc.proceduralDetail && decoratedOver(desc.layers[std::size_t(i)]);
+            if ((pass == 0) == first) order.push_back(i);
+        }
+    return order;
+}
+
+std::size_t ProceduralDetailGlsl::dataLayerCount(const CompositeProgramDesc& desc) {
+    if (!desc.proceduralDetail) return 0;
+    return std::size_t(std::count_if(desc.layers.begin(), desc.layers.end(), decoratedOver));
+}
+
+std::string ProceduralDetailGlsl::afterDataSamples(const CompositeProgramDesc& desc) {
+    std::ostringstream s;
+    s << "    float dataCover = 0.0;\n";
+    for (std::size_t i = 0; i < desc.layers.size(); ++i)
+        if (decoratedOver(desc.layers[i]))
+            s << "    dataCover = max(dataCover, clamp(L" << i << ".a * uLayerParam" << i
+              << ".x * uLayerParam" << i << ".w, 0.0, 1.0));\n";
+    s << "    {\n"
+         "        vec3 bump = vDetailParam.x * detailSum(vScenePos, uDetailFreq, vDetailParam.y, false);\n"
+         "        vec3 detailed = normalize(vec3(vNormalDetail.xy / max(vNormalDetail.z, 1e-3) - bump.yz, 1.0));\n"
+         "        // Under a data layer the data surface's own normal: its colours stay exact.\n"
+         "        vNormal = dataCover >= 1.0 ? vNormalData\n"
+         "                                   : normalize(mix(detailed, normalize(vNormalData), dataCover));\n"
+         "    }\n";
+    return s.str();
+}
+
+std::string ProceduralDetailGlsl::beforeLighting() {
+    return "    C *= mix(detailTexture(vScenePos), 1.0, dataCover);\n";
+}
+
+}  // namespace kiosk::render
