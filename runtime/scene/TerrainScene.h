@@ -142,6 +142,11 @@ public:
      * grid of the same vertex count (the benchmark's baseline). No effect without detail.
      */
     void setDetailWarpIterations(int iterations);
+    /**
+     * @brief Where the procedural detail grid drew last frame: the world rectangle only it covers
+     * (the quadtree's hole), false when it did not draw.
+     */
+    bool detailHole(glm::dvec2& min, glm::dvec2& max) const;
 
 private:
     TerrainScene() = default;
@@ -183,6 +188,8 @@ private:
     /** @brief Region, sketch, warp and upload; sets the quadtree renderer's hole. */
     void planDetail(const math::Camera& camera, render::TerrainRenderer& quadtree);
     void setDetailLens(int index, const render::LensBinding& lens);
+    /** @brief The sketch map over the planned region from the drawn meshes; false if incomplete. */
+    bool buildDetailSketch(double postSpacing, int finestLevel);
     void recordDetailTile(const terrain::DrawTile& t, std::size_t layerIndex,
                           const render::LayerBinding& binding);
     bool detailHides(const terrain::DrawTile& t) const;

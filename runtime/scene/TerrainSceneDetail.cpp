@@ -23,6 +23,7 @@ constexpr int kImportanceSize = 65;
 /** DS04's C: the desired face-on size of a grid cell in pixels. */
 constexpr double kCellPx = 3.0;
 constexpr std::size_t kPostsCacheEntries = 64;
+constexpr int kRegionAttempts = 8;
 
 }  // namespace
 
@@ -33,6 +34,8 @@ struct TerrainScene::DetailState {
     terrain::DetailRegion region;
     glm::dvec2 holeMin{1.0}, holeMax{0.0};
     terrain::DetailSketch sketch;
+    std::vector<float> tileCap;  ///< scratch of buildDetailSketch
+    terrain::WarpGrid grid;
     terrain::WarpedGridMesh mesh;
     double postSpacing = 0.0;
     struct CachedPosts {
@@ -53,6 +56,13 @@ void TerrainScene::DetailDeleter::operator()(DetailState* d) const { delete d; }
 
 void TerrainScene::setDetailWarpIterations(int iterations) {
     if (mDetail) mDetail->iterations = std::max(0, iterations);
+}
+
+bool TerrainScene::detailHole(glm::dvec2& min, glm::dvec2& max) const {
+    if (!mDetail || !mFrame.proceduralDetail) return false;
+    min = mDetail->holeMin;
+    max = mDetail->holeMax;
+    return true;
 }
 
 Diagnostics TerrainScene::buildDetailRenderer() {
@@ -112,15 +122,40 @@ void TerrainScene::planDetail(const math::Camera& camera, render::TerrainRendere
                 if (std::isfinite(z)) groundZ = z;
             }
     const glm::dvec2 lattice(mGrid.minX + 0.5 * m.pixelXSize, mGrid.maxY - 0.5 * m.pixelYSize);
-    d.region = terrain::planDetailRegion(camera, groundZ, d0, lattice, glm::dvec2(mBounds.min) + d0,
-                                         glm::dvec2(mBounds.max) - d0);
-    if (!d.region.valid()) return;
-    // Only where the finest data is coarser than the pixels: a post spacing seen from the
-    // region's nearest point must cover more than a pixel.
-    const glm::dvec2 nearest = glm::clamp(eye, d.region.min, d.region.max);
-    const double nearestDistance = std::max(glm::distance(camera.eye, glm::dvec3(nearest, groundZ)), 1.0);
-    if (d0 * camera.pixelsPerMetreAt(nearestDistance) <= 1.0) return;
+    // The grid must sample the data at least as densely as its posts everywhere (else it would
+    // lose data the quadtree shows): shrink the region until the warped grid's largest spacing
+    // is at most one post spacing.
+    for (int attempt = 0; attempt < kRegionAttempts; ++attempt) {
+        d.region = terrain::planDetailRegion(camera, groundZ, d0, lattice, glm::dvec2(mBounds.min) + d0,
+                                             glm::dvec2(mBounds.max) - d0, std::pow(0.7, attempt));
+        if (!d.region.valid()) return;
+        // Only where the finest data is coarser than the pixels: a post spacing seen from the
+        // region's nearest point must cover more than a pixel.
+        const glm::dvec2 nearest = glm::clamp(eye, d.region.min, d.region.max);
+        const double nearestDistance =
+            std::max(glm::distance(camera.eye, glm::dvec3(nearest, groundZ)), 1.0);
+        if (d0 * camera.pixelsPerMetreAt(nearestDistance) <= 1.0) return;
+        if (!buildDetailSketch(d0, finest)) return;  // part of the region is not drawn (yet)
+        const terrain::ImportanceMap imp = terrain::viewImportance(d.sketch, camera, kCellPx, kImportanceSize);
+        d.grid = terrain::warpGeometryImage(imp, kGridSize, d.iterations);
+        const double spacing = terrain::maxVisibleGridSpacing(d.grid, d.sketch, camera);
+        KIOSK_LOG_DEBUG(kTag, "attempt %d: region %.0f m, largest grid spacing %.1f m (posts %.1f m)", attempt,
+                        d.region.max.x - d.region.min.x, spacing, d0);
+        if (spacing <= d0) break;
+        if (attempt + 1 == kRegionAttempts) return;
+    }
+    const double size = std::min(d.region.max.x - d.region.min.x, d.region.max.y - d.region.min.y);
+    const double fade = std::max(0.1 * size, 2.0 * d0);
+    terrain::buildWarpedGridMesh(d.grid, d.sketch, fade, 0.5 * d0 + 2.0, d.mesh);
+    d.renderer->upload(d.mesh);
+    d.holeMin = d.region.min + d0;
+    d.holeMax = d.region.max - d0;
+    quadtree.setHole(d.holeMin, d.holeMax);
+    d.active = true;
+}
 
+bool TerrainScene::buildDetailSketch(double d0, int finest) {
+    DetailState& d = *mDetail;
     terrain::DetailSketch& sk = d.sketch;
     sk.min = d.region.min;
     sk.spacing = d0;
@@ -131,7 +166,8 @@ void TerrainScene::planDetail(const math::Camera& camera, render::TerrainRendere
     sk.heights.assign(count, nan);
     sk.normals.assign(count, glm::vec3(0.0f, 0.0f, 1.0f));
     sk.cap.assign(count, 0.0f);
-    std::vector<float> tileCap(count, std::numeric_limits<float>::infinity());
+    std::vector<float>& tileCap = d.tileCap;
+    tileCap.assign(count, std::numeric_limits<float>::infinity());
     for (const auto& t : mSelection->tiles) {
         if (t.clipMax.x < sk.min.x || t.clipMin.x > sk.max().x || t.clipMax.y < sk.min.y ||
             t.clipMin.y > sk.max().y)
@@ -163,7 +199,7 @@ void TerrainScene::planDetail(const math::Camera& camera, render::TerrainRendere
             }
     }
     for (float z : sk.heights)
-        if (!std::isfinite(z)) return;  // part of the region is not drawn (yet): no detail
+        if (!std::isfinite(z)) return false;
     // A post's cap is the smallest of the tiles within one post, so the bilinear amplitude
     // anywhere stays under the cap of the tile it lies in.
     for (int j = 0; j < sk.height; ++j)
@@ -175,16 +211,7 @@ void TerrainScene::planDetail(const math::Camera& camera, render::TerrainRendere
             sk.cap[sk.index(i, j)] = std::isfinite(c) ? c : 0.0f;
         }
     terrain::computeDetailAmplitude(sk);
-    const terrain::ImportanceMap imp = terrain::viewImportance(sk, camera, kCellPx, kImportanceSize);
-    const terrain::WarpGrid grid = terrain::warpGeometryImage(imp, kGridSize, d.iterations);
-    const double size = std::min(d.region.max.x - d.region.min.x, d.region.max.y - d.region.min.y);
-    const double fade = std::max(0.1 * size, 2.0 * d0);
-    terrain::buildWarpedGridMesh(grid, sk, fade, 0.5 * d0 + 2.0, d.mesh);
-    d.renderer->upload(d.mesh);
-    d.holeMin = d.region.min + d0;
-    d.holeMax = d.region.max - d0;
-    quadtree.setHole(d.holeMin, d.holeMax);
-    d.active = true;
+    return true;
 }
 
 void TerrainScene::recordDetailTile(const terrain::DrawTile& t, std::size_t layerIndex,

@@ -10,6 +10,7 @@ namespace {
 /** Half-size of the detail region in eye heights above the ground. */
 constexpr double kRangeFactor = 6.0;
 constexpr double kMinPosts = 4.0, kMaxPosts = 128.0;
+constexpr float kVisibleFloor = 0.2f;
 
 double bilinear(const DetailSketch& s, const std::vector<float>& v, const glm::dvec2& p) {
     if (s.width < 2 || s.height < 2 || v.size() < std::size_t(s.width) * std::size_t(s.height))
@@ -80,11 +81,11 @@ void computeDetailAmplitude(DetailSketch& s) {
 
 DetailRegion planDetailRegion(const math::Camera& cam, double groundZ, double d0,
                               const glm::dvec2& origin, const glm::dvec2& dataMin,
-                              const glm::dvec2& dataMax) {
+                              const glm::dvec2& dataMax, double rangeScale) {
     DetailRegion r;
     if (!(d0 > 0.0)) return r;
     const double above = std::max(cam.eye.z - groundZ, d0);
-    const double half = std::clamp(kRangeFactor * above, kMinPosts * d0, kMaxPosts * d0);
+    const double half = std::clamp(kRangeFactor * above * rangeScale, kMinPosts * d0, kMaxPosts * d0);
     glm::dvec2 centre(cam.eye);
     const glm::dvec2 fwd(cam.forward);
     // Ahead of the nadir: behind the camera the importance is low anyway (S_f), so the region's
@@ -97,6 +98,20 @@ DetailRegion planDetailRegion(const math::Camera& cam, double groundZ, double d0
     if (r.max.x - r.min.x < kMinPosts * d0 - 1e-6 || r.max.y - r.min.y < kMinPosts * d0 - 1e-6)
         return {};
     return r;
+}
+
+double maxVisibleGridSpacing(const WarpGrid& g, const DetailSketch& sk, const math::Camera& cam) {
+    const glm::dmat4 viewProj = cam.projection() * cam.view();
+    double m = 0.0;
+    for (int t = 0; t < g.n; ++t)
+        for (int s = 0; s < g.n; ++s) {
+            const glm::dvec2 p = g.at(s, t);
+            const double z = sk.heightAt(p);
+            const glm::dvec4 c = viewProj * glm::dvec4(p, std::isfinite(z) ? z : 0.0, 1.0);
+            if (c.w <= 0.0 || std::fabs(c.x) > 1.05 * c.w || std::fabs(c.y) > 1.05 * c.w) continue;
+            m = std::max(m, maxNeighbourDistance(g, s, t));
+        }
+    return m;
 }
 
 ImportanceMap viewImportance(const DetailSketch& sketch, const math::Camera& cam, double cellPx,
@@ -112,6 +127,7 @@ ImportanceMap viewImportance(const DetailSketch& sketch, const math::Camera& cam
     // Weight of the first octave in the normalised sum of kDetailOctaves halving octaves.
     const double w1 = 1.0 / (2.0 - std::ldexp(1.0, 1 - kDetailOctaves));
     float peak = 0.0f;
+    std::vector<float> visible(m.values.size(), 0.0f);
     for (int j = 0; j < m.size; ++j)
         for (int i = 0; i < m.size; ++i) {
             const glm::dvec2 p = m.min + (m.max - m.min) * glm::dvec2(i, j) / double(m.size - 1);
@@ -137,12 +153,16 @@ ImportanceMap viewImportance(const DetailSketch& sketch, const math::Camera& cam
             const double is = std::ldexp(1.0, k) / d0;
             const float v = float(std::min(iv * sf * sb, is));
             m.values[std::size_t(j) * std::size_t(m.size) + std::size_t(i)] = v;
+            visible[std::size_t(j) * std::size_t(m.size) + std::size_t(i)] = float(sf);
             peak = std::max(peak, v);
         }
     // A floor of 10 % of the peak and a light smoothing keep the separable warp from folding
     // the grid where the importance changes sharply (frustum edges, the camera's nadir).
-    for (float& v : m.values) v = std::max(v, 0.1f * peak + 1e-9f);
-    smoothImportance(m, 4);
+    // Visible ground gets at least kVisibleFloor of the peak: the far part of the view must
+    // still be sampled at the data's post spacing (the region shrinks until it is).
+    for (std::size_t k = 0; k < m.values.size(); ++k)
+        m.values[k] = std::max({m.values[k], 0.1f * peak + 1e-9f, kVisibleFloor * visible[k] * peak});
+    smoothImportance(m, 8);
     return m;
 }
 

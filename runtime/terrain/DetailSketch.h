@@ -63,7 +63,14 @@ struct DetailRegion {
 };
 DetailRegion planDetailRegion(const math::Camera& camera, double groundZ, double postSpacing,
                               const glm::dvec2& latticeOrigin, const glm::dvec2& dataMin,
-                              const glm::dvec2& dataMax);
+                              const glm::dvec2& dataMax, double rangeScale = 1.0);
+
+/**
+ * @brief The largest distance between neighbouring samples of `grid` (metres) among samples on
+ * `sketch`'s surface that `camera` sees (inside its frustum): where the grid must be at least
+ * as dense as the data's posts.
+ */
+double maxVisibleGridSpacing(const WarpGrid& grid, const DetailSketch& sketch, const math::Camera& camera);
 
 /**
  * @brief DS04 §3.1's importance over the sketch: I = min(I_v S_f S_b, I_s) with
@@ -72,7 +79,8 @@ DetailRegion planDetailRegion(const math::Camera& camera, double groundZ, double
  *  - S_b: 1 for front-facing and silhouette surface, lower for back-facing slopes;
  *  - I_s: the surface bound: 1 / d0 where the procedural detail is too small to show, up to
  *    2^k / d0 for the finest octave k whose amplitude still projects to half a pixel.
- * A floor (10 % of the maximum) and smoothImportance(4) keep the warped grid from folding.
+ * A floor (10 % of the maximum; 20 % where visible) and smoothImportance(8) keep the warped
+ * grid from folding and visible cells within one post spacing.
  * `size` lattice points per side.
  */
 ImportanceMap viewImportance(const DetailSketch& sketch, const math::Camera& camera, double cellPx,
