@@ -131,8 +131,6 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
     s << "\nvoid main() {\n"
          "    if (any(lessThan(vScenePos, uClip.xy)) || any(greaterThan(vScenePos, uClip.zw))) "
          "discard;\n"
-         "    if (all(greaterThan(vScenePos, uHole.xy)) && all(lessThan(vScenePos, uHole.zw))) "
-         "discard;\n"
          << (desc.elevationTint
                  ? "    vec3 C = mix(uBaseColor.rgb, texture(uElevLut, vec2(lutCoord(vElevation, "
                    "uElevLutDomain, uElevLutSize), 0.5)).rgb, uElevLutWeight);\n"
@@ -147,7 +145,8 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
     const std::vector<int> order = ProceduralDetailGlsl::sampleOrder(desc);
     const std::size_t dataFirst = ProceduralDetailGlsl::dataLayerCount(desc);
     for (std::size_t o = 0; o < order.size(); ++o) {
-        if (desc.proceduralDetail && o == dataFirst) s << ProceduralDetailGlsl::afterDataSamples(desc);
+        if ((desc.proceduralDetail || desc.detailHole) && o == dataFirst)
+            s << ProceduralDetailGlsl::afterDataSamples(desc);
         const int i = order[o];
         const auto& l = desc.layers[std::size_t(i)];
         s << "    vec2 uv" << i << " = (vScenePos - uLayerRect" << i << ".xy) * uLayerRect" << i
@@ -214,7 +213,7 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
             }
         }
     }
-    if (desc.proceduralDetail && dataFirst == order.size())
+    if ((desc.proceduralDetail || desc.detailHole) && dataFirst == order.size())
         s << ProceduralDetailGlsl::afterDataSamples(desc);
     for (int i = 0; i < n; ++i) {
         const auto& l = desc.layers[std::size_t(i)];

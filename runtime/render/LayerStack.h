@@ -84,6 +84,12 @@ struct CompositeProgramDesc {
      * (render/ProceduralDetailGlsl.h).
      */
     bool proceduralDetail = false;
+    /**
+     * @brief The quadtree's program when the scene has procedural detail: fragments inside
+     * uHole are discarded unless a data layer shows colour there (the detail grid draws the
+     * rest; data stays drawn by the data surface, exactly as without detail).
+     */
+    bool detailHole = false;
 };
 
 /**

@@ -1,10 +1,10 @@
 #include "runtime/render/ProceduralDetailGlsl.h"
 
-#include <algorithm>
-#include <sstream>
-
 #include "runtime/gl/ShaderLibrary.h"
 #include "runtime/render/LayerStack.h"
+
+#include <algorithm>
+#include <sstream>
 
 namespace kiosk::render {
 
@@ -22,6 +22,9 @@ Result<std::string> ProceduralDetailGlsl::declarations() {
          "in float vDetailOffset;\n"
          "in vec2 vDetailParam;  // (amplitude, split octave)\n"
          "uniform float uDetailFreq;\n"
+         "uniform mat4 uModelViewProj;  // shared with warpgrid.vert\n"
+         "uniform vec3 uOrigin;\n"
+         "uniform float uVerticalScale;\n"
          "uniform float uDetailTauTex;\n"
       << *noise << "\n"
       << R"(// Texture detail: octaves from 4 / d0 up, each faded out before it reaches 2 pixels
@@ -53,14 +56,15 @@ std::vector<int> ProceduralDetailGlsl::sampleOrder(const CompositeProgramDesc& d
     const int n = int(desc.layers.size());
     for (int pass = 0; pass < 2; ++pass)
         for (int i = 0; i < n; ++i) {
-            const bool first = desc.proceduralDetail && decoratedOver(desc.layers[std::size_t(i)]);
+            const bool first = (desc.proceduralDetail || desc.detailHole) &&
+                               decoratedOver(desc.layers[std::size_t(i)]);
             if ((pass == 0) == first) order.push_back(i);
         }
     return order;
 }
 
 std::size_t ProceduralDetailGlsl::dataLayerCount(const CompositeProgramDesc& desc) {
-    if (!desc.proceduralDetail) return 0;
+    if (!desc.proceduralDetail && !desc.detailHole) return 0;
     return std::size_t(std::count_if(desc.layers.begin(), desc.layers.end(), decoratedOver));
 }
 
@@ -71,18 +75,34 @@ std::string ProceduralDetailGlsl::afterDataSamples(const CompositeProgramDesc& d
         if (decoratedOver(desc.layers[i]))
             s << "    dataCover = max(dataCover, clamp(L" << i << ".a * uLayerParam" << i
               << ".x * uLayerParam" << i << ".w, 0.0, 1.0));\n";
-    s << "    {\n"
-         "        vec3 bump = vDetailParam.x * detailSum(vScenePos, uDetailFreq, vDetailParam.y, false);\n"
-         "        vec3 detailed = normalize(vec3(vNormalDetail.xy / max(vNormalDetail.z, 1e-3) - bump.yz, 1.0));\n"
-         "        // Under a data layer the data surface's own normal: its colours stay exact.\n"
-         "        vNormal = dataCover >= 1.0 ? vNormalData\n"
-         "                                   : normalize(mix(detailed, normalize(vNormalData), dataCover));\n"
+    if (!desc.proceduralDetail) {
+        // The quadtree: inside the hole only what a data layer colours (the grid draws the rest).
+        s << "    if (all(greaterThan(vScenePos, uHole.xy)) && all(lessThan(vScenePos, uHole.zw)) "
+             "&&\n"
+             "        dataCover <= 0.0) discard;\n";
+        return s.str();
+    }
+    // The grid, where a data layer shows: the data surface's normal and a depth pushed below the
+    // data surface (the decoration's amplitude and a metre), so the quadtree, which draws the
+    // data there exactly as without detail, wins the depth test; the grid only fills what the
+    // quadtree leaves (where the displaced and the data surfaces part at a data edge).
+    s << "    if (dataCover > 0.0) {\n"
+         "        vec4 low = uModelViewProj * vec4(vScenePos - uOrigin.xy,\n"
+         "            (vElevation - vDetailParam.x - 1.0) * uVerticalScale - uOrigin.z, 1.0);\n"
+         "        gl_FragDepth = clamp(0.5 * low.z / low.w + 0.5, 0.0, 1.0);\n"
+         "        vNormal = vNormalData;\n"
+         "    } else {\n"
+         "        gl_FragDepth = gl_FragCoord.z;\n"
+         "        vec3 bump = vDetailParam.x * detailSum(vScenePos, uDetailFreq, vDetailParam.y, "
+         "false);\n"
+         "        vNormal = normalize(vec3(vNormalDetail.xy / max(vNormalDetail.z, 1e-3) - "
+         "bump.yz, 1.0));\n"
          "    }\n";
     return s.str();
 }
 
 std::string ProceduralDetailGlsl::beforeLighting() {
-    return "    C *= mix(detailTexture(vScenePos), 1.0, dataCover);\n";
+    return "    C *= mix(detailTexture(vScenePos), 1.0, step(1e-6, dataCover));\n";
 }
 
 }  // namespace kiosk::render

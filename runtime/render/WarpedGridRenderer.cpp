@@ -4,8 +4,10 @@
 
 namespace kiosk::render {
 
-Result<WarpedGridRenderer> WarpedGridRenderer::create(CompositeProgramDesc desc, int maxTextureUnits) {
+Result<WarpedGridRenderer> WarpedGridRenderer::create(CompositeProgramDesc desc,
+                                                      int maxTextureUnits) {
     desc.proceduralDetail = true;
+    desc.detailHole = false;
     auto program = TerrainRenderer::create(desc, maxTextureUnits, "warpgrid.vert");
     if (!program) return program.diagnostics;
     WarpedGridRenderer r;
@@ -22,9 +24,11 @@ Result<WarpedGridRenderer> WarpedGridRenderer::create(CompositeProgramDesc desc,
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
     glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(3 * sizeof(float)));
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(3 * sizeof(float)));
     glEnableVertexAttribArray(2);
-    glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(6 * sizeof(float)));
+    glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(6 * sizeof(float)));
     glBindVertexArray(0);
     return r;
 }
@@ -32,8 +36,8 @@ Result<WarpedGridRenderer> WarpedGridRenderer::create(CompositeProgramDesc desc,
 void WarpedGridRenderer::upload(const terrain::WarpedGridMesh& mesh) {
     glBindVertexArray(mVao.id());
     glBindBuffer(GL_ARRAY_BUFFER, mVertices.id());
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.vertices.size() * sizeof(float)), mesh.vertices.data(),
-                 GL_DYNAMIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.vertices.size() * sizeof(float)),
+                 mesh.vertices.data(), GL_DYNAMIC_DRAW);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
                  mesh.indices.data(), GL_DYNAMIC_DRAW);
     glBindVertexArray(0);

@@ -1,11 +1,11 @@
 #pragma once
 
-#include <cstdint>
-
 #include "runtime/core/Result.h"
 #include "runtime/gl/GlObject.h"
 #include "runtime/render/TerrainRenderer.h"
 #include "runtime/terrain/WarpedGridMesh.h"
+
+#include <cstdint>
 
 namespace kiosk::render {
 

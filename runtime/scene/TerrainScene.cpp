@@ -249,6 +249,7 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
     // The scene's elevation LUT is a flat grey and Session draws with elevationLutWeight 0
     // (hypsometric tint comes from data layers): skip that fetch per pixel.
     desc.elevationTint = false;
+    desc.detailHole = scenario.terrain.proceduralDetail;  // the detail grid draws inside a hole
     s->mDesc = desc;
     s->mMaxTextureUnits = caps.maxTextureUnits;
     if (Diagnostics d = s->setupMappings(caps); d.hasErrors()) return d;
@@ -343,9 +344,12 @@ void TerrainScene::uploadPayload(terrain::TileHandle handle, terrain::TilePayloa
         if (!mCache->reserveGpu(handle, bytes)) return;
         slot.mesh = render::GpuMesh::upload(payload.mesh->vertices.data(), payload.mesh->vertices.size(),
                                             payload.mesh->indices.data(), payload.mesh->indices.size());
-        // The GPU copy is what is drawn; the CPU vertices are not needed again.
-        payload.mesh->vertices = {};
-        payload.mesh->indices = {};
+        // The GPU copy is what is drawn; the CPU vertices are not needed again (except by the
+        // procedural detail, which reads the TIN back near the camera; counted in the budget).
+        if (!mDetail) {
+            payload.mesh->vertices = {};
+            payload.mesh->indices = {};
+        }
     } else if (payload.image) {
         bytes = std::max<std::size_t>(payload.image->rgba.size() * 4 / 3, 1);  // with mipmaps
         if (!mCache->reserveGpu(handle, bytes)) return;

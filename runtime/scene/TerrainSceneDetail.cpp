@@ -2,16 +2,16 @@
 // geometry image of Dachsbacher & Stamminger drawn where the data is coarser than the pixels,
 // the quadtree everywhere else. Built from what the quadtree draws (its meshes read back at
 // their posts), so the hand-over matches; the quadtree leaves a hole where the grid draws.
-#include <algorithm>
-#include <cmath>
-#include <limits>
-#include <unordered_map>
-
 #include "runtime/core/Log.h"
 #include "runtime/scene/TerrainScene.h"
 #include "runtime/terrain/DetailSketch.h"
 #include "runtime/terrain/MeshPosts.h"
 #include "runtime/terrain/WarpedGridMesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
 
 namespace kiosk::scene {
 namespace {
@@ -35,6 +35,12 @@ struct TerrainScene::DetailState {
     glm::dvec2 holeMin{1.0}, holeMax{0.0};
     terrain::DetailSketch sketch;
     std::vector<float> tileCap;  ///< scratch of buildDetailSketch
+    std::vector<std::uint32_t> fillQueue;
+    struct Source {
+        glm::dvec2 min, max;
+        const terrain::MeshPosts* posts;
+    };
+    std::vector<Source> sources;  ///< drawn tiles over the region (valid during planDetail)
     terrain::WarpGrid grid;
     terrain::WarpedGridMesh mesh;
     double postSpacing = 0.0;
@@ -52,7 +58,9 @@ struct TerrainScene::DetailState {
     std::vector<Piece> pieces;
 };
 
-void TerrainScene::DetailDeleter::operator()(DetailState* d) const { delete d; }
+void TerrainScene::DetailDeleter::operator()(DetailState* d) const {
+    delete d;
+}
 
 void TerrainScene::setDetailWarpIterations(int iterations) {
     if (mDetail) mDetail->iterations = std::max(0, iterations);
@@ -90,7 +98,9 @@ const terrain::MeshPosts* TerrainScene::detailPosts(const terrain::DrawTile& t) 
                 if (i->second.lastUsed < oldest->second.lastUsed) oldest = i;
             mDetail->posts.erase(oldest);
         }
-        it = mDetail->posts.emplace(t.geometry, DetailState::CachedPosts{terrain::meshPosts(*p->mesh), 0}).first;
+        it = mDetail->posts
+                 .emplace(t.geometry, DetailState::CachedPosts{terrain::meshPosts(*p->mesh), 0})
+                 .first;
     }
     it->second.lastUsed = mFrameNumber;
     return &it->second.posts;
@@ -116,7 +126,8 @@ void TerrainScene::planDetail(const math::Camera& camera, render::TerrainRendere
     double groundZ = mBounds.min.z;
     const glm::dvec2 eye(camera.eye);
     for (const auto& t : mSelection->tiles)
-        if (eye.x >= t.clipMin.x && eye.x <= t.clipMax.x && eye.y >= t.clipMin.y && eye.y <= t.clipMax.y)
+        if (eye.x >= t.clipMin.x && eye.x <= t.clipMax.x && eye.y >= t.clipMin.y &&
+            eye.y <= t.clipMax.y)
             if (const terrain::MeshPosts* p = detailPosts(t)) {
                 const double z = p->at(eye);
                 if (std::isfinite(z)) groundZ = z;
@@ -126,27 +137,48 @@ void TerrainScene::planDetail(const math::Camera& camera, render::TerrainRendere
     // lose data the quadtree shows): shrink the region until the warped grid's largest spacing
     // is at most one post spacing.
     for (int attempt = 0; attempt < kRegionAttempts; ++attempt) {
-        d.region = terrain::planDetailRegion(camera, groundZ, d0, lattice, glm::dvec2(mBounds.min) + d0,
-                                             glm::dvec2(mBounds.max) - d0, std::pow(0.7, attempt));
-        if (!d.region.valid()) return;
+        d.region =
+            terrain::planDetailRegion(camera, groundZ, d0, lattice, glm::dvec2(mBounds.min) + d0,
+                                      glm::dvec2(mBounds.max) - d0, std::pow(0.7, attempt));
+        if (!d.region.valid()) {
+            KIOSK_LOG_DEBUG(kTag, "no region (ground %.0f m)", groundZ);
+            return;
+        }
         // Only where the finest data is coarser than the pixels: a post spacing seen from the
         // region's nearest point must cover more than a pixel.
         const glm::dvec2 nearest = glm::clamp(eye, d.region.min, d.region.max);
         const double nearestDistance =
             std::max(glm::distance(camera.eye, glm::dvec3(nearest, groundZ)), 1.0);
         if (d0 * camera.pixelsPerMetreAt(nearestDistance) <= 1.0) return;
-        if (!buildDetailSketch(d0, finest)) return;  // part of the region is not drawn (yet)
-        const terrain::ImportanceMap imp = terrain::viewImportance(d.sketch, camera, kCellPx, kImportanceSize);
+        if (!buildDetailSketch(d0, finest)) return;
+        const terrain::ImportanceMap imp =
+            terrain::viewImportance(d.sketch, camera, kCellPx, kImportanceSize);
         d.grid = terrain::warpGeometryImage(imp, kGridSize, d.iterations);
         const double spacing = terrain::maxVisibleGridSpacing(d.grid, d.sketch, camera);
-        KIOSK_LOG_DEBUG(kTag, "attempt %d: region %.0f m, largest grid spacing %.1f m (posts %.1f m)", attempt,
-                        d.region.max.x - d.region.min.x, spacing, d0);
+        KIOSK_LOG_DEBUG(kTag,
+                        "attempt %d: region %.0f m, largest grid spacing %.1f m (posts %.1f m)",
+                        attempt, d.region.max.x - d.region.min.x, spacing, d0);
         if (spacing <= d0) break;
         if (attempt + 1 == kRegionAttempts) return;
     }
     const double size = std::min(d.region.max.x - d.region.min.x, d.region.max.y - d.region.min.y);
     const double fade = std::max(0.1 * size, 2.0 * d0);
-    terrain::buildWarpedGridMesh(d.grid, d.sketch, fade, 0.5 * d0 + 2.0, d.mesh);
+    // Vertices take the drawn TIN's own height and normal (so the grid shows what the quadtree
+    // would, and data layers are shaded alike); posts under no drawn tile fall back to the sketch.
+    d.sources.clear();
+    for (const auto& t : mSelection->tiles)
+        if (t.clipMax.x >= d.region.min.x && t.clipMin.x <= d.region.max.x &&
+            t.clipMax.y >= d.region.min.y && t.clipMin.y <= d.region.max.y)
+            if (const terrain::MeshPosts* p = detailPosts(t))
+                d.sources.push_back({t.clipMin, t.clipMax, p});
+    const auto surface = [&d](const glm::dvec2& p, double& z, glm::dvec3& n) {
+        for (const auto& src : d.sources)
+            if (p.x >= src.min.x && p.x <= src.max.x && p.y >= src.min.y && p.y <= src.max.y &&
+                src.posts->sample(p, z, n))
+                return true;
+        return false;
+    };
+    terrain::buildWarpedGridMesh(d.grid, d.sketch, fade, 0.5 * d0 + 2.0, d.mesh, surface);
     d.renderer->upload(d.mesh);
     d.holeMin = d.region.min + d0;
     d.holeMax = d.region.max - d0;
@@ -182,9 +214,11 @@ bool TerrainScene::buildDetailSketch(double d0, int finest) {
             mStats.lookup(t.id.parent(), st) == terrain::TileState::Known)
             cap = terrain::kDetailErrorFraction * std::max(0.0, double(st.geometricError));
         const int i0 = std::max(0, int(std::ceil((t.clipMin.x - sk.min.x) / d0 - 1e-6)));
-        const int i1 = std::min(sk.width - 1, int(std::floor((t.clipMax.x - sk.min.x) / d0 + 1e-6)));
+        const int i1 =
+            std::min(sk.width - 1, int(std::floor((t.clipMax.x - sk.min.x) / d0 + 1e-6)));
         const int j0 = std::max(0, int(std::ceil((t.clipMin.y - sk.min.y) / d0 - 1e-6)));
-        const int j1 = std::min(sk.height - 1, int(std::floor((t.clipMax.y - sk.min.y) / d0 + 1e-6)));
+        const int j1 =
+            std::min(sk.height - 1, int(std::floor((t.clipMax.y - sk.min.y) / d0 + 1e-6)));
         for (int j = j0; j <= j1; ++j)
             for (int i = i0; i <= i1; ++i) {
                 const glm::dvec2 p = sk.min + glm::dvec2(i, j) * d0;
@@ -194,12 +228,16 @@ bool TerrainScene::buildDetailSketch(double d0, int finest) {
                 sk.heights[k] = float(z);
                 int pi = 0, pj = 0;
                 if (posts->nearest(p, pi, pj))
-                    sk.normals[k] = posts->n[std::size_t(pj) * std::size_t(posts->size) + std::size_t(pi)];
+                    sk.normals[k] =
+                        posts->n[std::size_t(pj) * std::size_t(posts->size) + std::size_t(pi)];
                 tileCap[k] = std::min(tileCap[k], float(cap));
             }
     }
-    for (float z : sk.heights)
-        if (!std::isfinite(z)) return false;
+    // Posts under no drawn tile lie outside the view frustum (the selector culls whole tiles):
+    // they take the nearest drawn post's height, with no decoration, so the grid stays a
+    // surface there. A region with no drawn post at all is not drawn.
+    if (!terrain::fillFromNearest(sk.heights, sk.normals, sk.width, sk.height, d.fillQueue))
+        return false;
     // A post's cap is the smallest of the tiles within one post, so the bilinear amplitude
     // anywhere stays under the cap of the tile it lies in.
     for (int j = 0; j < sk.height; ++j)
@@ -245,7 +283,8 @@ void TerrainScene::drawDetail(const math::Camera& camera, const render::TerrainS
     p.begin(camera, mSceneOrigin, style);
     d.renderer->setDetail(d.postSpacing, style.tauTex);
     for (const auto& piece : d.pieces) {
-        for (std::size_t li = 0; li < piece.layers.size(); ++li) p.setLayer(int(li), piece.layers[li]);
+        for (std::size_t li = 0; li < piece.layers.size(); ++li)
+            p.setLayer(int(li), piece.layers[li]);
         int first = 0, last = 0;
         terrain::warpedGridRows(d.mesh, piece.clipMin.y, piece.clipMax.y, first, last);
         d.renderer->draw(first, last, piece.clipMin, piece.clipMax);
@@ -257,8 +296,8 @@ void TerrainScene::drawDetail(const math::Camera& camera, const render::TerrainS
     mFrame.drawCalls += p.counters().drawCalls;
     if (log::threshold() == log::Level::Debug)
         KIOSK_LOG_DEBUG(kTag, "grid over %.0f x %.0f m, %zu pieces, %llu triangles",
-                        d.region.max.x - d.region.min.x, d.region.max.y - d.region.min.y, d.pieces.size(),
-                        (unsigned long long)p.counters().triangles);
+                        d.region.max.x - d.region.min.x, d.region.max.y - d.region.min.y,
+                        d.pieces.size(), (unsigned long long)p.counters().triangles);
 }
 
 }  // namespace kiosk::scene

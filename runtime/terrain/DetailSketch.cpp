@@ -38,7 +38,8 @@ double DetailSketch::amplitudeAt(const glm::dvec2& p) const {
 
 glm::dvec3 DetailSketch::normalAt(const glm::dvec2& p) const {
     if (width >= 2 && height >= 2 && normals.size() >= std::size_t(width) * std::size_t(height)) {
-        const glm::dvec2 u = glm::clamp((p - min) / spacing, glm::dvec2(0.0), glm::dvec2(width - 1, height - 1));
+        const glm::dvec2 u =
+            glm::clamp((p - min) / spacing, glm::dvec2(0.0), glm::dvec2(width - 1, height - 1));
         const int x0 = std::min(int(u.x), width - 2), y0 = std::min(int(u.y), height - 2);
         const double ax = u.x - x0, ay = u.y - y0;
         const auto n = [&](int x, int y) { return glm::dvec3(normals[index(x, y)]); };
@@ -51,6 +52,29 @@ glm::dvec3 DetailSketch::normalAt(const glm::dvec2& p) const {
     const double dy = heightAt(p + glm::dvec2(0, e)) - heightAt(p - glm::dvec2(0, e));
     if (!std::isfinite(dx) || !std::isfinite(dy)) return {0.0, 0.0, 1.0};
     return glm::normalize(glm::dvec3(-dx / (2 * e), -dy / (2 * e), 1.0));
+}
+
+bool fillFromNearest(std::vector<float>& h, std::vector<glm::vec3>& n, int width, int height,
+                     std::vector<std::uint32_t>& queue) {
+    queue.clear();
+    for (std::size_t k = 0; k < h.size(); ++k)
+        if (std::isfinite(h[k])) queue.push_back(std::uint32_t(k));
+    if (queue.empty()) return false;
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+        const std::uint32_t k = queue[head];
+        const int x = int(k % std::uint32_t(width)), y = int(k / std::uint32_t(width));
+        const int d[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+        for (const auto& o : d) {
+            const int nx = x + o[0], ny = y + o[1];
+            if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+            const std::size_t q = std::size_t(ny) * std::size_t(width) + std::size_t(nx);
+            if (std::isfinite(h[q])) continue;
+            h[q] = h[k];
+            if (q < n.size() && k < n.size()) n[q] = n[k];
+            queue.push_back(std::uint32_t(q));
+        }
+    }
+    return true;
 }
 
 void computeDetailAmplitude(DetailSketch& s) {
@@ -85,7 +109,8 @@ DetailRegion planDetailRegion(const math::Camera& cam, double groundZ, double d0
     DetailRegion r;
     if (!(d0 > 0.0)) return r;
     const double above = std::max(cam.eye.z - groundZ, d0);
-    const double half = std::clamp(kRangeFactor * above * rangeScale, kMinPosts * d0, kMaxPosts * d0);
+    const double half =
+        std::clamp(kRangeFactor * above * rangeScale, kMinPosts * d0, kMaxPosts * d0);
     glm::dvec2 centre(cam.eye);
     const glm::dvec2 fwd(cam.forward);
     // Ahead of the nadir: behind the camera the importance is low anyway (S_f), so the region's
@@ -161,7 +186,8 @@ ImportanceMap viewImportance(const DetailSketch& sketch, const math::Camera& cam
     // Visible ground gets at least kVisibleFloor of the peak: the far part of the view must
     // still be sampled at the data's post spacing (the region shrinks until it is).
     for (std::size_t k = 0; k < m.values.size(); ++k)
-        m.values[k] = std::max({m.values[k], 0.1f * peak + 1e-9f, kVisibleFloor * visible[k] * peak});
+        m.values[k] =
+            std::max({m.values[k], 0.1f * peak + 1e-9f, kVisibleFloor * visible[k] * peak});
     smoothImportance(m, 8);
     return m;
 }

@@ -4,6 +4,7 @@
 #include "runtime/math/Glm.h"
 #include "runtime/terrain/GeometryImageWarp.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace kiosk::terrain {
@@ -48,6 +49,13 @@ struct DetailSketch {
     glm::dvec3 normalAt(const glm::dvec2& p) const;
 };
 
+/**
+ * @brief Give every NaN height the height (and normal) of the nearest finite post in grid steps
+ * (breadth-first from all finite posts). False when there is no finite post. `queue` is scratch.
+ */
+bool fillFromNearest(std::vector<float>& heights, std::vector<glm::vec3>& normals, int width,
+                     int height, std::vector<std::uint32_t>& queue);
+
 /** @brief Fill `amplitude` from `heights` and `cap` (see kDetailRoughnessGain). */
 void computeDetailAmplitude(DetailSketch& sketch);
 
@@ -70,7 +78,8 @@ DetailRegion planDetailRegion(const math::Camera& camera, double groundZ, double
  * `sketch`'s surface that `camera` sees (inside its frustum): where the grid must be at least
  * as dense as the data's posts.
  */
-double maxVisibleGridSpacing(const WarpGrid& grid, const DetailSketch& sketch, const math::Camera& camera);
+double maxVisibleGridSpacing(const WarpGrid& grid, const DetailSketch& sketch,
+                             const math::Camera& camera);
 
 /**
  * @brief DS04 §3.1's importance over the sketch: I = min(I_v S_f S_b, I_s) with

@@ -3,6 +3,7 @@
 #include "runtime/math/Glm.h"
 #include "runtime/terrain/RtinMesher.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace kiosk::terrain {
@@ -24,6 +25,17 @@ struct MeshPosts {
     double at(const glm::dvec2& p) const;
     /** @brief Post (i, j) nearest to world `p` (clamped); false outside the posts. */
     bool nearest(const glm::dvec2& p, int& i, int& j) const;
+    /**
+     * @brief The TIN itself at world `p`: height and normal interpolated in the triangle that
+     * contains it (exactly what the rasteriser draws there); false outside the surface.
+     */
+    bool sample(const glm::dvec2& p, double& height, glm::dvec3& normal) const;
+
+    /** @brief Per post cell, the surface triangles overlapping it (first index of each). */
+    std::vector<std::uint32_t> cellStart, cellTriangles;
+    std::vector<glm::vec3> vertices;  ///< the TIN's vertices in post coordinates (x, y) and z
+    std::vector<glm::vec3> normals;
+    std::vector<std::uint32_t> indices;  ///< surface triangles
 };
 
 MeshPosts meshPosts(const TileMesh& mesh);

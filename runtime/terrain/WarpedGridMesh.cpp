@@ -6,7 +6,7 @@
 namespace kiosk::terrain {
 
 void buildWarpedGridMesh(const WarpGrid& g, const DetailSketch& sk, double fadeWidth,
-                         double skirtDepth, WarpedGridMesh& out) {
+                         double skirtDepth, WarpedGridMesh& out, const SurfaceSampler& surface) {
     const int n = g.n;
     out.origin = sk.min;
     out.vertices.clear();
@@ -15,11 +15,16 @@ void buildWarpedGridMesh(const WarpGrid& g, const DetailSketch& sk, double fadeW
     out.rowY.clear();
     const glm::dvec2 lo = sk.min, hi = sk.max();
     const auto push = [&](const glm::dvec2& p, double skirt, double fade) {
-        const glm::dvec3 nrm = sk.normalAt(p);
+        double z = 0.0;
+        glm::dvec3 nrm(0.0, 0.0, 1.0);
+        if (!surface || !surface(p, z, nrm)) {
+            z = sk.heightAt(p);
+            nrm = sk.normalAt(p);
+        }
         out.vertices.insert(out.vertices.end(),
-                            {float(p.x - out.origin.x), float(p.y - out.origin.y), float(sk.heightAt(p)),
-                             float(nrm.x), float(nrm.y), float(nrm.z), float(sk.amplitudeAt(p)), 0.0f,
-                             float(fade), float(skirt)});
+                            {float(p.x - out.origin.x), float(p.y - out.origin.y), float(z),
+                             float(nrm.x), float(nrm.y), float(nrm.z), float(sk.amplitudeAt(p)),
+                             0.0f, float(fade), float(skirt)});
     };
     for (int t = 0; t < n; ++t)
         for (int s = 0; s < n; ++s) {
@@ -42,11 +47,11 @@ void buildWarpedGridMesh(const WarpGrid& g, const DetailSketch& sk, double fadeW
         out.rowY.emplace_back(y0, y1);
         for (int s = 0; s + 1 < n; ++s) {
             if (cellDiagonal(g, s, t) == 1)
-                out.indices.insert(out.indices.end(), {v(s, t), v(s + 1, t), v(s, t + 1), v(s + 1, t),
-                                                       v(s + 1, t + 1), v(s, t + 1)});
+                out.indices.insert(out.indices.end(), {v(s, t), v(s + 1, t), v(s, t + 1),
+                                                       v(s + 1, t), v(s + 1, t + 1), v(s, t + 1)});
             else  // 0, or a folded cell (never seen with the smoothed importance): draw it anyway
-                out.indices.insert(out.indices.end(), {v(s, t), v(s + 1, t), v(s + 1, t + 1), v(s, t),
-                                                       v(s + 1, t + 1), v(s, t + 1)});
+                out.indices.insert(out.indices.end(), {v(s, t), v(s + 1, t), v(s + 1, t + 1),
+                                                       v(s, t), v(s + 1, t + 1), v(s, t + 1)});
         }
     }
     out.cellTriangles = std::uint32_t(out.indices.size() / 3);
@@ -57,15 +62,18 @@ void buildWarpedGridMesh(const WarpGrid& g, const DetailSketch& sk, double fadeW
     for (int t = 0; t + 1 < n; ++t) ring.push_back(v(n - 1, t));
     for (int s = n - 1; s > 0; --s) ring.push_back(v(s, n - 1));
     for (int t = n - 1; t > 0; --t) ring.push_back(v(0, t));
-    const std::uint32_t first = std::uint32_t(out.vertices.size() / WarpedGridMesh::kFloatsPerVertex);
+    const std::uint32_t first =
+        std::uint32_t(out.vertices.size() / WarpedGridMesh::kFloatsPerVertex);
     for (std::uint32_t top : ring) {
         const std::size_t o = std::size_t(top) * WarpedGridMesh::kFloatsPerVertex;
-        for (int k = 0; k < WarpedGridMesh::kFloatsPerVertex; ++k) out.vertices.push_back(out.vertices[o + std::size_t(k)]);
+        for (int k = 0; k < WarpedGridMesh::kFloatsPerVertex; ++k)
+            out.vertices.push_back(out.vertices[o + std::size_t(k)]);
         out.vertices.back() = float(skirtDepth);
     }
     const std::uint32_t m = std::uint32_t(ring.size());
     for (std::uint32_t k = 0; k < m; ++k) {
-        const std::uint32_t a = ring[k], b = ring[(k + 1) % m], a2 = first + k, b2 = first + (k + 1) % m;
+        const std::uint32_t a = ring[k], b = ring[(k + 1) % m], a2 = first + k,
+                            b2 = first + (k + 1) % m;
         out.indices.insert(out.indices.end(), {a, a2, b2, a, b2, b});
     }
 }

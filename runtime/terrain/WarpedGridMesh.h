@@ -4,6 +4,7 @@
 #include "runtime/terrain/GeometryImageWarp.h"
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace kiosk::terrain {
@@ -30,12 +31,15 @@ struct WarpedGridMesh {
 };
 
 /**
- * @brief Build the mesh of `grid` over `sketch` (whose posts must all be finite). The fade
+ * @brief Build the mesh of `grid` over `sketch` (whose posts must all be finite); heights and
+ * normals from `surface` where it answers (the drawn TIN itself), else from the sketch. The fade
  * reaches 1 at `fadeWidth` metres from the border; skirts hang `skirtDepth` metres.
  * Reuses `out`'s buffers.
  */
+using SurfaceSampler = std::function<bool(const glm::dvec2& p, double& height, glm::dvec3& normal)>;
 void buildWarpedGridMesh(const WarpGrid& grid, const DetailSketch& sketch, double fadeWidth,
-                         double skirtDepth, WarpedGridMesh& out);
+                         double skirtDepth, WarpedGridMesh& out,
+                         const SurfaceSampler& surface = {});
 
 /** @brief Rows of cells [first, last) whose y range meets [minY, maxY]. */
 void warpedGridRows(const WarpedGridMesh& mesh, double minY, double maxY, int& first, int& last);

@@ -187,6 +187,26 @@ TEST(MeshPosts, TheTinIsReadBackAtItsPosts) {
             EXPECT_NEAR(posts.at(glm::dvec2(1000 + (i + 0.5) * 10, 2000 - (j + 0.5) * 10)),
                         tile.values[std::size_t(j) * 17 + std::size_t(i)], 1e-3);
     EXPECT_TRUE(std::isnan(posts.at(glm::dvec2(900, 2000))));
+    // Anywhere inside, the TIN's own triangle: within its cell's post range, exact at posts.
+    for (int k = 0; k < 200; ++k) {
+        const double fx = 0.5 + 15.9 * ((k * 37) % 101) / 101.0,
+                     fy = 0.5 + 15.9 * ((k * 53) % 97) / 97.0;
+        double z = 0;
+        glm::dvec3 n(0.0);
+        ASSERT_TRUE(posts.sample(glm::dvec2(1000 + fx * 10, 2000 - fy * 10), z, n));
+        const int i = int(fx - 0.5), j = int(fy - 0.5);
+        const auto v = [&](int x, int y) {
+            return double(tile.values[std::size_t(y) * 17 + std::size_t(x)]);
+        };
+        EXPECT_GE(z, std::min({v(i, j), v(i + 1, j), v(i, j + 1), v(i + 1, j + 1)}) - 1e-3);
+        EXPECT_LE(z, std::max({v(i, j), v(i + 1, j), v(i, j + 1), v(i + 1, j + 1)}) + 1e-3);
+        EXPECT_GT(n.z, 0.0);
+    }
+    double z = 0;
+    glm::dvec3 n(0.0);
+    ASSERT_TRUE(posts.sample(glm::dvec2(1000 + 5.5 * 10, 2000 - 7.5 * 10), z, n));
+    EXPECT_NEAR(z, tile.values[7 * 17 + 5], 1e-3);
+    EXPECT_FALSE(posts.sample(glm::dvec2(900, 2000), z, n));
 }
 
 }  // namespace
