@@ -91,7 +91,7 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
     if (desc.proceduralDetail) s << ProceduralDetailGlsl::beforePrelude();
     s << kPrelude;
     if (desc.proceduralDetail) {
-        auto detail = ProceduralDetailGlsl::declarations();
+        auto detail = ProceduralDetailGlsl::declarations(desc);
         if (!detail) return detail.diagnostics;
         s << *detail;
     }

@@ -12,7 +12,7 @@ std::string ProceduralDetailGlsl::beforePrelude() {
     return "#define vNormal vNormalDetail\n";
 }
 
-Result<std::string> ProceduralDetailGlsl::declarations() {
+Result<std::string> ProceduralDetailGlsl::declarations(const CompositeProgramDesc& desc) {
     auto noise = gl::ShaderLibrary::source("common/detailnoise.glsl");
     if (!noise) return noise.diagnostics;
     std::ostringstream s;
@@ -24,8 +24,11 @@ Result<std::string> ProceduralDetailGlsl::declarations() {
          "uniform float uDetailFreq;\n"
          "uniform mat4 uModelViewProj;  // shared with warpgrid.vert\n"
          "uniform vec3 uOrigin;\n"
-         "uniform float uVerticalScale;\n"
-         "uniform float uDetailTauTex;\n"
+      << (std::any_of(desc.layers.begin(), desc.layers.end(),
+                      [](const CompositeLayer& l) { return l.kind == LayerKind::Normals; })
+              ? ""  // NormalShading's helpers declare it
+              : "uniform float uVerticalScale;\n")
+      << "uniform float uDetailTauTex;\n"
       << *noise << "\n"
       << R"(// Texture detail: octaves from 4 / d0 up, each faded out before it reaches 2 pixels
 // (clamping and fading), the whole faded in where a data texel exceeds tauTex on screen.

@@ -30,7 +30,7 @@ struct ProceduralDetailGlsl {
      */
     static std::string beforePrelude();
     /** @brief After the prelude: inputs, uniforms, the noise library and the texture detail. */
-    static Result<std::string> declarations();
+    static Result<std::string> declarations(const CompositeProgramDesc& desc);
     /**
      * @brief The order in which the generator emits the layers' samples: data and sequence
      * layers (except the hypsometric tint from the mesh's own elevation) first when
