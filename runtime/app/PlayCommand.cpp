@@ -158,6 +158,8 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     int kioskExit = kExitOk;
     auto kiosk = KioskHooks::create(args, scenarioPath, kioskExit);
     if (!kiosk) return kioskExit;
+    // From here SIGTERM means "stop cleanly" (exit 0), also during a slow display or store open.
+    installStopSignals();
 
     auto display = platform::createDisplay(dopts);
     if (!display) {
@@ -188,7 +190,6 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         offscreen.emplace(std::move(*rt.value));
     }
 
-    installStopSignals();
     RealClock wall;
     anim::ScenarioClock clock = makeClock(*session);
     anim::FrameGovernor governor = makeGovernor(*session, targetFps);
