@@ -87,11 +87,11 @@ struct Layer {
 
 /** @brief A named transfer function and where it came from. */
 struct TransferFunctionDef {
-    enum class Origin { Stops, Classes, Preset, ParaView, Gdal };
+    enum class Origin { Stops, Classes, Preset, ParaView, Gdal, File };
     std::string name;
     std::string label;  ///< human title for the legend ("Water depth"); may be empty
     Origin origin = Origin::Stops;
-    std::filesystem::path file;        ///< ParaView / gdal file, resolved
+    std::filesystem::path file;        ///< ParaView / gdal / colour-map file, resolved
     bool explicitDomain = false;       ///< the author fixed "domain"
     color::TransferFunction function;  ///< finalized: sorted, domain set
     std::string pointer;               ///< "/transferFunctions/depth"

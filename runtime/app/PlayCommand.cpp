@@ -30,12 +30,13 @@ constexpr double kReloadPollSeconds = 0.5;
 /** How far ahead (wall seconds) the camera path is sampled for prefetching. */
 constexpr double kPrefetchSeconds = 2.0;
 
+constexpr const char* kUsage =
+    "usage: geokiosk play SCENARIO [--display "
+    "auto|kms|x11|wayland|headless] [--size WxH] [--windowed] [--max-fps N] "
+    "[--frames N] [--connector NAME] [--drm-device PATH]\n";
+
 int usage(const std::string& message) {
-    std::fprintf(stderr,
-                 "geokiosk play: %s\nusage: geokiosk play SCENARIO [--display "
-                 "auto|kms|x11|wayland|headless] [--size WxH] [--windowed] [--max-fps N] "
-                 "[--frames N] [--connector NAME] [--drm-device PATH]\n",
-                 message.c_str());
+    std::fprintf(stderr, "geokiosk play: %s\n%s", message.c_str(), kUsage);
     return kExitUsage;
 }
 
@@ -60,6 +61,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     Args args("play", {"display", "size", "max-fps", "frames", "connector", "drm-device"},
               {"windowed"});
     if (!args.parse(argv)) return usage(args.error());
+    if (args.help()) return showHelp(kUsage);
     if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
     const std::filesystem::path scenarioPath = args.positionals()[0];
     platform::DisplayOptions dopts;

@@ -28,11 +28,12 @@ constexpr const char* kTag = "render";
 /** How long one frame may wait for its tiles before it is drawn with what is resident. */
 constexpr double kSettleTimeoutSeconds = 120.0;
 
+constexpr const char* kUsage = "usage: geokiosk render SCENARIO --out OUT [--time T | "
+                               "--from T0 --to T1 --fps N] [--size WxH] [--viewpoint NAME] "
+                               "[--stats STATS.json]\n";
+
 int usage(const std::string& message) {
-    std::fprintf(stderr, "geokiosk render: %s\nusage: geokiosk render SCENARIO --out OUT [--time T | "
-                         "--from T0 --to T1 --fps N] [--size WxH] [--viewpoint NAME] "
-                         "[--stats STATS.json]\n",
-                 message.c_str());
+    std::fprintf(stderr, "geokiosk render: %s\n%s", message.c_str(), kUsage);
     return kExitUsage;
 }
 
@@ -41,6 +42,7 @@ int usage(const std::string& message) {
 int runRenderCommand(const std::vector<std::string>& argv) {
     Args args("render", {"out", "time", "from", "to", "fps", "size", "viewpoint", "stats"}, {});
     if (!args.parse(argv)) return usage(args.error());
+    if (args.help()) return showHelp(kUsage);
     if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
     const std::filesystem::path scenarioPath = args.positionals()[0];
     const auto out = args.value("out");
