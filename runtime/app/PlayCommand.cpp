@@ -5,9 +5,11 @@
 #include <cmath>
 #include <optional>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <thread>
 
+#include "runtime/anim/FrameGovernor.h"
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
 #include "runtime/app/KioskHooks.h"
@@ -31,11 +33,40 @@ constexpr double kReloadPollSeconds = 0.5;
 /** How far ahead (wall seconds) the camera path is sampled for prefetching. */
 constexpr double kPrefetchSeconds = 2.0;
 
+/**
+ * Test hook: GEOKIOSK_TEST_FRAME_COST_MS=MS[:FRAMES] adds an artificial cost to each of the
+ * first FRAMES frames (all when omitted), modelled on a fill-bound frame: MS at the scenario's
+ * settings, times the rendered fraction of the pixels and the scenario's tauGeom over the one
+ * used. Lets the governor be tested on any machine (tests/scenario/GovernorPlayTest).
+ */
+class TestFrameCost {
+public:
+    TestFrameCost() {
+        const char* v = std::getenv("GEOKIOSK_TEST_FRAME_COST_MS");
+        if (!v || !*v) return;
+        char* end = nullptr;
+        mMs = std::strtod(v, &end);
+        if (end && *end == ':') mFrames = std::strtol(end + 1, nullptr, 10);
+        if (!(mMs > 0)) mMs = 0;
+    }
+    void spend(long frame, Session& s) const {
+        if (mMs <= 0 || (mFrames >= 0 && frame >= mFrames)) return;
+        const double scale = s.renderScale();
+        const double tau = s.scenario().terrain.tauGeom / std::max(1e-9, s.terrain().tauGeom());
+        const double ms = mMs * scale * scale * tau;
+        std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(ms));
+    }
+
+private:
+    double mMs = 0;
+    long mFrames = -1;
+};
+
 constexpr const char* kUsage =
     "usage: geokiosk play SCENARIO [--display "
     "auto|kms|x11|wayland|headless] [--size WxH] [--windowed] [--max-fps N] "
     "[--frames N] [--connector NAME] [--drm-device PATH] [--listen HOST:PORT] "
-    "[--token-file FILE]\n";
+    "[--token-file FILE] [--target-fps N] [--stats STATS.json]\n";
 
 int usage(const std::string& message) {
     std::fprintf(stderr, "geokiosk play: %s\n%s", message.c_str(), kUsage);
@@ -57,11 +88,22 @@ anim::ScenarioClock makeClock(const Session& s) {
     return clock ? *clock.value : anim::ScenarioClock();
 }
 
+/** The scenario's governor, `--target-fps` overriding its frame rate. */
+anim::FrameGovernor makeGovernor(const Session& s, std::optional<double> targetFps) {
+    const config::Governor& g = s.scenario().governor;
+    anim::GovernorSettings gs;
+    gs.targetFps = targetFps.value_or(g.targetFps);
+    gs.maxTauFactor = g.maxTauFactor;
+    gs.minRenderScale = g.minRenderScale;
+    return anim::FrameGovernor(gs, s.scenario().terrain.tauGeom, s.scenario().terrain.tauTex);
+}
+
 }  // namespace
 
 int runPlayCommand(const std::vector<std::string>& argv) {
     std::vector<std::string> valueOptions = {"display",   "size",      "max-fps",
-                                             "frames",    "connector", "drm-device"};
+                                             "frames",    "connector", "drm-device",
+                                             "target-fps", "stats"};
     for (const auto& o : KioskHooks::optionNames()) valueOptions.push_back(o);
     Args args("play", valueOptions, {"windowed"});
     if (!args.parse(argv)) return usage(args.error());
@@ -86,6 +128,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         dopts.height = wh->second;
     }
     dopts.windowed = args.flag("windowed");
+    dopts.shouldStop = stopRequested;
     dopts.connector = args.value("connector").value_or("");
     dopts.drmDevice = args.value("drm-device").value_or("");
     double maxFps = 0;
@@ -93,6 +136,13 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         char* end = nullptr;
         maxFps = std::strtod(f->c_str(), &end);
         if (end == f->c_str() || *end || !(maxFps > 0)) return usage("--max-fps wants a positive number");
+    }
+    std::optional<double> targetFps;
+    if (auto f = args.value("target-fps")) {
+        char* end = nullptr;
+        targetFps = std::strtod(f->c_str(), &end);
+        if (end == f->c_str() || *end || !(*targetFps >= 0) || *targetFps > 240)
+            return usage("--target-fps wants a number of frames per second in 0..240 (0: off)");
     }
     long frameLimit = -1;
     if (auto f = args.value("frames")) {
@@ -143,6 +193,10 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     installStopSignals();
     RealClock wall;
     anim::ScenarioClock clock = makeClock(*session);
+    anim::FrameGovernor governor = makeGovernor(*session, targetFps);
+    TestFrameCost testCost;
+    std::optional<FrameStats> stats;
+    if (args.value("stats")) stats.emplace();
     auto watched = session->scenario().sourceFiles;
     auto watchedStamps = stamps(watched);
     double lastPoll = wall.now(), last = wall.now();
@@ -161,6 +215,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             session = std::move(next);
             const double was = clock.current();
             clock = makeClock(*session);
+            governor = makeGovernor(*session, targetFps);
             if (kiosk->keepsDataTime()) clock.seek(was);
             scenarioPath = kiosk->currentScenario();
             watched = session->scenario().sourceFiles;
@@ -181,6 +236,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
                 if (next) {
                     session = std::move(*next.value);
                     clock = makeClock(*session);
+                    governor = makeGovernor(*session, targetFps);
                     watched = session->scenario().sourceFiles;
                     watchedStamps = stamps(watched);
                     KIOSK_LOG_INFO(kTag, "%s: reloaded", scenarioPath.c_str());
@@ -228,7 +284,11 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         else
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
         session->setPlayback(scene::playbackOf(clock));
-        session->drawFrame(cam, t, w, h);
+        if (governor.state().active) {
+            session->terrain().setTau(governor.state().tauGeom, governor.state().tauTex);
+            session->setRenderScale(governor.state().renderScale);
+        }
+        FrameRecord rec = session->drawFrame(cam, t, w, h);
         // Camera paths are known in advance: ask for the tiles of the view two seconds ahead.
         if (auto ahead = session->viewpointAt(clock.predict(kPrefetchSeconds), ""))
             session->terrain().prefetch(makeCamera(*ahead, session->terrain().bounds(), w, h,
@@ -238,7 +298,12 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             return kExitCannotRun;
         }
         if (offscreen) glFinish();
-        kiosk->frameDone(*session, clock, scenarioPath, (wall.now() - now) * 1000.0, t);
+        testCost.spend(frame, *session);
+        // The frame's cost as the viewer sees it (update, draw, present), not the --max-fps wait.
+        rec.frameMs = (wall.now() - now) * 1000.0;
+        governor.frameDone(rec.frameMs);
+        if (stats) stats->add(rec);
+        kiosk->frameDone(*session, clock, scenarioPath, rec.frameMs, t);
         if (maxFps > 0) {
             const double spent = wall.now() - now;
             const double wait = 1.0 / maxFps - spent;
@@ -246,6 +311,13 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         }
     }
     kiosk->service().stopping();
+    if (stats) {
+        Diagnostics d;
+        if (!stats->write(*args.value("stats"), d)) {
+            printDiagnostics(d);
+            return kExitBadInput;
+        }
+    }
     KIOSK_LOG_INFO(kTag, "stopped cleanly");
     return kExitOk;
 }
