@@ -1,5 +1,6 @@
 #include "config/ScenarioReader.h"
 
+#include "config/BriefingReader.h"
 #include "config/DocumentLoader.h"
 #include "runtime/color/ColorImport.h"
 #include "runtime/color/ColorMapFiles.h"
@@ -28,7 +29,7 @@ const std::map<std::string, std::vector<std::string>>& propertyTable() {
         {"Scenario",
          {"$schema", "version", "include", "title", "caption", "stores", "terrain", "layers",
           "transferFunctions", "clock", "lenses", "projectiveMappings", "viewpoints", "cameraPaths",
-          "camera", "overlays", "lighting", "governor"}},
+          "camera", "overlays", "lighting", "governor", "briefing"}},
         {"Governor", {"targetFps", "maxTauFactor", "minRenderScale"}},
         {"Terrain",
          {"store", "elevation", "tauGeom", "tauTex", "verticalExaggeration", "reference", "cacheBytes",
@@ -65,6 +66,11 @@ const std::map<std::string, std::vector<std::string>>& propertyTable() {
         {"SimpleOverlay", {"enabled", "position"}},
         {"Lighting", {"sunAzimuth", "sunAltitude", "ambient", "keys", "solar", "latitude", "longitude"}},
         {"LightingKey", {"time", "sunAzimuth", "sunAltitude"}},
+        {"Briefing", {"chapters"}},
+        {"Chapter",
+         {"title", "time", "from", "to", "duration", "viewpoint", "path", "layers", "caption",
+          "pause"}},
+        {"ChapterLayer", {"enabled", "opacity"}},
     };
     return table;
 }
@@ -1302,6 +1308,7 @@ Result<Scenario> build(LoadedDocument doc, Diagnostics diags,
         for (auto it = tfs->begin(); it != tfs->end(); ++it)
             reader.mDeclaredTransfers.push_back(it.key());
     reader.root(doc.value);
+    readBriefing(doc.value, s, diags);  // config/BriefingReader.cpp
     for (auto& f : reader.mFiles)
         if (std::find(s.sourceFiles.begin(), s.sourceFiles.end(), f) == s.sourceFiles.end())
             s.sourceFiles.push_back(f);
