@@ -621,7 +621,7 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
                 }
                 if (l.specT >= 0) bindArrival(l, t, b);
             }
-            b.strength = l.strength;
+            b.strength = l.strengthOverride.value_or(l.strength);
             r.setLayer(int(li), b);
             if (mDetail) recordDetailTile(t, li, b);
             if (li == mFirstSequenceLayer) noteDrawnFrames(l, t);

@@ -145,6 +145,12 @@ public:
     std::vector<double> sequenceKeyTimes() const;
     const SceneLut* lut(const std::string& transferName) const;
     /**
+     * @brief A chapter's override of layer `id`: hidden, or drawn with `opacity` (nullopt: the
+     * scenario's). False if no such layer is in the stack.
+     */
+    bool setLayerOverride(const std::string& id, bool visible, std::optional<double> opacity);
+    void clearLayerOverrides();
+    /**
      * @brief Draw scene positions and elevations instead of colours (into a float target) for
      * fidelity measurements. Rebuilds the terrain program; false if that failed.
      */
@@ -186,6 +192,7 @@ private:
         anim::VisiblePair pair;
         anim::DisplayPair shown;
         float strength = 1.0f;
+        std::optional<float> strengthOverride;  ///< a briefing chapter's (TerrainSceneOverrides.cpp)
         std::optional<float> nodataAs;
         anim::PrefetchPlanner planner;
         anim::PrefetchPlan plan;
