@@ -45,6 +45,9 @@ public:
     std::unique_ptr<Session> nextSession(const anim::ScenarioClock& clock, const gl::Caps& caps);
     /** @brief The last switch re-opened the same scenario (store swap): keep the data time. */
     bool keepsDataTime() const noexcept { return mKeepTime; }
+    /** @brief The scenario on screen opened again (hot reload, control, store swap), with the
+     * kiosk file's budgets. */
+    Result<std::unique_ptr<Session>> reopen(const gl::Caps& caps);
     /** @brief Scenario file on screen (the one hot reload watches). */
     std::filesystem::path currentScenario() const;
     /** @brief Fade curtain for this frame (0 without a playlist fade). */

@@ -9,9 +9,11 @@
 #include <filesystem>
 #include <thread>
 
+#include "runtime/anim/BriefingPlayer.h"
 #include "runtime/anim/FrameGovernor.h"
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
+#include "runtime/app/BriefingControl.h"
 #include "runtime/app/KioskHooks.h"
 #include "runtime/app/Report.h"
 #include "runtime/app/Session.h"
@@ -62,13 +64,14 @@ private:
     long mFrames = -1;
 };
 
+constexpr const char* kUsage =
+    "usage: geokiosk play SCENARIO [--display "
+    "auto|kms|x11|wayland|headless] [--size WxH] [--windowed] [--max-fps N] "
+    "[--frames N] [--connector NAME] [--drm-device PATH] [--listen HOST:PORT] "
+    "[--token-file FILE] [--target-fps N] [--stats STATS.json]\n";
+
 int usage(const std::string& message) {
-    std::fprintf(stderr,
-                 "geokiosk play: %s\nusage: geokiosk play SCENARIO [--display "
-                 "auto|kms|x11|wayland|headless] [--size WxH] [--windowed] [--max-fps N] "
-                 "[--frames N] [--connector NAME] [--drm-device PATH] [--listen HOST:PORT] "
-                 "[--token-file FILE] [--target-fps N] [--stats STATS.json]\n",
-                 message.c_str());
+    std::fprintf(stderr, "geokiosk play: %s\n%s", message.c_str(), kUsage);
     return kExitUsage;
 }
 
@@ -80,6 +83,13 @@ std::vector<std::filesystem::file_time_type> stamps(const std::vector<std::files
         out.push_back(std::filesystem::last_write_time(f, ec));
     }
     return out;
+}
+
+/** A briefing plays its chapters instead of the clock (and starts on its first chapter). */
+std::optional<anim::BriefingPlayer> makeBriefing(Session& s) {
+    if (!s.scenario().briefing) return std::nullopt;
+    s.setChapter(0);
+    return anim::BriefingPlayer(s.chapterSpans());
 }
 
 anim::ScenarioClock makeClock(const Session& s) {
@@ -106,6 +116,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     for (const auto& o : KioskHooks::optionNames()) valueOptions.push_back(o);
     Args args("play", valueOptions, {"windowed"});
     if (!args.parse(argv)) return usage(args.error());
+    if (args.help()) return showHelp(kUsage);
     if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
     std::filesystem::path scenarioPath = args.positionals()[0];
     platform::DisplayOptions dopts;
@@ -158,6 +169,8 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     int kioskExit = kExitOk;
     auto kiosk = KioskHooks::create(args, scenarioPath, kioskExit);
     if (!kiosk) return kioskExit;
+    // From here SIGTERM means "stop cleanly" (exit 0), also during a slow display or store open.
+    installStopSignals();
 
     auto display = platform::createDisplay(dopts);
     if (!display) {
@@ -188,9 +201,9 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         offscreen.emplace(std::move(*rt.value));
     }
 
-    installStopSignals();
     RealClock wall;
     anim::ScenarioClock clock = makeClock(*session);
+    std::optional<anim::BriefingPlayer> briefing = makeBriefing(*session);
     anim::FrameGovernor governor = makeGovernor(*session, targetFps);
     TestFrameCost testCost;
     std::optional<FrameStats> stats;
@@ -213,6 +226,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             session = std::move(next);
             const double was = clock.current();
             clock = makeClock(*session);
+            briefing = makeBriefing(*session);
             governor = makeGovernor(*session, targetFps);
             if (kiosk->keepsDataTime()) clock.seek(was);
             scenarioPath = kiosk->currentScenario();
@@ -230,10 +244,11 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             auto current = stamps(watched);
             if (current != watchedStamps) {
                 watchedStamps = current;
-                auto next = Session::open(scenarioPath, *caps);
+                auto next = kiosk->reopen(*caps);  // same file, with the kiosk's budgets
                 if (next) {
                     session = std::move(*next.value);
                     clock = makeClock(*session);
+                    briefing = makeBriefing(*session);
                     governor = makeGovernor(*session, targetFps);
                     watched = session->scenario().sourceFiles;
                     watchedStamps = stamps(watched);
@@ -251,13 +266,23 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             }
         }
 
-        if (input.togglePause) clock.paused() ? clock.resume() : clock.pause();
-        if (input.step != 0) {
-            const auto keys = session->terrain().sequenceKeyTimes();
-            input.step > 0 ? clock.stepToNextKey(keys) : clock.stepToPreviousKey(keys);
+        const int chapterSteps = takeChapterSteps();  // the control endpoint's next/previous
+        if (briefing) {
+            // In a briefing space resumes from a chapter's pause, . and , go to the next and
+            // previous chapter.
+            if (input.togglePause) briefing->togglePause();
+            for (int k = input.step + chapterSteps; k != 0; k += k > 0 ? -1 : 1)
+                k > 0 ? briefing->next() : briefing->previous();
+        } else {
+            if (input.togglePause) clock.paused() ? clock.resume() : clock.pause();
+            if (input.step != 0) {
+                const auto keys = session->terrain().sequenceKeyTimes();
+                input.step > 0 ? clock.stepToNextKey(keys) : clock.stepToPreviousKey(keys);
+            }
         }
         const bool ready = !session->terrain().frameInfo().holdingSequence;
-        const double t = clock.advance(dt, ready).time;
+        const double t = briefing ? briefing->advance(dt, ready) : clock.advance(dt, ready).time;
+        if (briefing && briefing->chapter() != session->chapterIndex()) session->setChapter(briefing->chapter());
         auto vp = session->viewpointAt(t, "");
         // Interactive control (when the scenario allows it): the first navigation key takes the
         // camera off its path from where it is; h / Home gives it back.
@@ -281,14 +306,24 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             offscreen->bind();
         else
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        session->setPlayback(scene::playbackOf(clock));
+        if (briefing) {
+            const anim::ChapterSpan& span = session->chapterSpans()[std::size_t(briefing->chapter())];
+            scene::Playback playback;
+            playback.rate = briefing->atPause() || briefing->userPaused() ? 0.0 : (span.to - span.from) / span.seconds;
+            playback.start = span.from;
+            playback.end = span.to;
+            session->setPlayback(playback);
+        } else {
+            session->setPlayback(scene::playbackOf(clock));
+        }
         if (governor.state().active) {
             session->terrain().setTau(governor.state().tauGeom, governor.state().tauTex);
             session->setRenderScale(governor.state().renderScale);
         }
         FrameRecord rec = session->drawFrame(cam, t, w, h);
         // Camera paths are known in advance: ask for the tiles of the view two seconds ahead.
-        if (auto ahead = session->viewpointAt(clock.predict(kPrefetchSeconds), ""))
+        const double aheadTime = briefing ? briefing->timeAhead(kPrefetchSeconds) : clock.predict(kPrefetchSeconds);
+        if (auto ahead = session->viewpointAt(aheadTime, ""))
             session->terrain().prefetch(makeCamera(*ahead, session->terrain().bounds(), w, h,
                                                    session->scenario().camera.fovY));
         if (!dpy.swapBuffers()) {
