@@ -51,6 +51,8 @@ struct Terrain {
     TerrainReference reference = TerrainReference::Lod;
     std::int64_t cacheBytes = 512ll << 20;  ///< CPU tile cache budget
     std::int64_t gpuBytes = 256ll << 20;    ///< resident texture/mesh budget
+    /** @brief Procedural detail near the camera (decoration, labelled; docs/terrain.md §7). */
+    bool proceduralDetail = false;
     std::string pointer = "/terrain";
 };
 
@@ -92,11 +94,11 @@ struct Layer {
 
 /** @brief A named transfer function and where it came from. */
 struct TransferFunctionDef {
-    enum class Origin { Stops, Classes, Preset, ParaView, Gdal };
+    enum class Origin { Stops, Classes, Preset, ParaView, Gdal, File };
     std::string name;
     std::string label;  ///< human title for the legend ("Water depth"); may be empty
     Origin origin = Origin::Stops;
-    std::filesystem::path file;        ///< ParaView / gdal file, resolved
+    std::filesystem::path file;        ///< ParaView / gdal / colour-map file, resolved
     bool explicitDomain = false;       ///< the author fixed "domain"
     color::TransferFunction function;  ///< finalized: sorted, domain set
     std::string pointer;               ///< "/transferFunctions/depth"

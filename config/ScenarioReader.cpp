@@ -5,6 +5,7 @@
 #include "config/Limits.h"
 #include "config/PathPolicy.h"
 #include "runtime/color/ColorImport.h"
+#include "runtime/color/ColorMapFiles.h"
 #include "runtime/core/Assert.h"
 #include "runtime/core/Strings.h"
 
@@ -34,14 +35,14 @@ const std::map<std::string, std::vector<std::string>>& propertyTable() {
         {"Governor", {"targetFps", "maxTauFactor", "minRenderScale"}},
         {"Terrain",
          {"store", "elevation", "tauGeom", "tauTex", "verticalExaggeration", "reference", "cacheBytes",
-          "gpuBytes"}},
+          "gpuBytes", "proceduralDetail"}},
         {"Layer",
          {"id", "kind", "source", "transfer", "operation", "enabled", "interpolate", "nodataAs"}},
         {"Source", {"store", "layer", "sequence"}},
         {"Operation", {"type", "weight", "opacity", "visibility"}},
         {"TransferFunction",
          {"label", "units", "space", "domain", "stops", "classes", "opacity", "nodata", "below",
-          "above", "preset", "paraview", "gdal"}},
+          "above", "preset", "paraview", "gdal", "file"}},
         {"Stop", {"value", "color"}},
         {"ClassBreak", {"from", "color", "label"}},
         {"OpacityPoint", {"value", "opacity"}},
@@ -578,6 +579,7 @@ private:
             assign(t.cacheBytes, readBytes(mC, *b, o.at("cacheBytes")));
         if (const json* b = o.get("gpuBytes"))
             assign(t.gpuBytes, readBytes(mC, *b, o.at("gpuBytes")));
+        assign(t.proceduralDetail, o.boolean("proceduralDetail"));
     }
 
     std::optional<SourceRef> source(const json& j, const std::string& ptr) {
@@ -672,7 +674,8 @@ private:
         def.name = name;
         def.pointer = ptr;
         assign(def.label, o.str("label"));
-        const std::vector<std::string> sources = {"stops", "classes", "preset", "paraview", "gdal"};
+        const std::vector<std::string> sources = {"stops",    "classes", "preset",
+                                                  "paraview", "gdal",    "file"};
         std::vector<std::string> given;
         for (const auto& s : sources)
             if (o.has(s)) given.push_back(s);
@@ -680,7 +683,8 @@ private:
             mC.error(
                 "SCENARIO_MISSING", ptr,
                 "transfer function " + quote(name) +
-                    " needs one of \"stops\", \"classes\", \"preset\", \"paraview\" or \"gdal\"");
+                    " needs one of \"stops\", \"classes\", \"preset\", \"paraview\", \"gdal\" or "
+                    "\"file\"");
             return std::nullopt;
         }
         if (given.size() > 1) {
@@ -768,18 +772,26 @@ private:
             tf = *r.value;
             if (domain) tf = tf.rescaled(domain->first, domain->second);
         } else {
-            def.origin = TransferFunctionDef::Origin::Gdal;
-            auto file = o.name("gdal");
+            // "gdal" names gdaldem / GRASS colour rules, "file" any colour-map file; both read
+            // the format from extension and content (a .cpt under "gdal" is read as GMT too).
+            def.origin = source == "gdal" ? TransferFunctionDef::Origin::Gdal
+                                          : TransferFunctionDef::Origin::File;
+            auto file = o.name(source);
             if (!file) return std::nullopt;
-            def.file = mC.resolve(o.at("gdal"), *file);
-            if (!fileExists(def.file, o.at("gdal"))) return std::nullopt;
-            auto r = color::importColorReliefFile(def.file, domain);
-            reemit(r.diagnostics, o.at("gdal"), def.file.filename().string() + ": ");
+            def.file = mC.resolve(o.at(source), *file);
+            if (!fileExists(def.file, o.at(source))) return std::nullopt;
+            color::ColorFileFormat format{};
+            auto r = color::importColorMapFile(def.file, domain, &format);
+            reemit(r.diagnostics, o.at(source), def.file.filename().string() + ": ");
             if (!r) return std::nullopt;
             tf = *r.value;
+            // Maps without data units (float lists, ParaView) are rescaled like presets.
+            if (domain && !color::hasDataUnits(format))
+                tf = tf.rescaled(domain->first, domain->second);
         }
         if (def.origin == TransferFunctionDef::Origin::ParaView ||
-            def.origin == TransferFunctionDef::Origin::Gdal)
+            def.origin == TransferFunctionDef::Origin::Gdal ||
+            def.origin == TransferFunctionDef::Origin::File)
             mFiles.push_back(def.file);
 
         tf.name = name;

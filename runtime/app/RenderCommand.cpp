@@ -32,12 +32,14 @@ constexpr double kPauseHoldSeconds = 2.0;
 /** How long one frame may wait for its tiles before it is drawn with what is resident. */
 constexpr double kSettleTimeoutSeconds = 120.0;
 
+constexpr const char* kUsage = "usage: geokiosk render SCENARIO --out OUT [--time T | "
+                               "--from T0 --to T1 --fps N] [--size WxH] [--viewpoint NAME] "
+                               "[--stats STATS.json] [--reference lod|full] [--crf N] [--quiet]\n"
+                               "  OUT: x.png | dir/ | x.mp4 (H.264) | x.mkv (FFV1 lossless) | "
+                               "x.webm (VP9)\n";
+
 int usage(const std::string& message) {
-    std::fprintf(stderr, "geokiosk render: %s\nusage: geokiosk render SCENARIO --out OUT [--time T | "
-                         "--from T0 --to T1 --fps N] [--size WxH] [--viewpoint NAME] "
-                         "[--stats STATS.json] [--reference lod|full] [--crf N] [--quiet]\n"
-                         "  OUT: x.png | dir/ | x.mp4 (H.264) | x.mkv (FFV1 lossless) | x.webm (VP9)\n",
-                 message.c_str());
+    std::fprintf(stderr, "geokiosk render: %s\n%s", message.c_str(), kUsage);
     return kExitUsage;
 }
 
@@ -48,6 +50,7 @@ int runRenderCommand(const std::vector<std::string>& argv) {
               {"out", "time", "from", "to", "fps", "size", "viewpoint", "stats", "reference", "crf"},
               {"quiet"});
     if (!args.parse(argv)) return usage(args.error());
+    if (args.help()) return showHelp(kUsage);
     if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
     const std::filesystem::path scenarioPath = args.positionals()[0];
     const auto out = args.value("out");
