@@ -51,6 +51,8 @@ struct Terrain {
     TerrainReference reference = TerrainReference::Lod;
     std::int64_t cacheBytes = 512ll << 20;  ///< CPU tile cache budget
     std::int64_t gpuBytes = 256ll << 20;    ///< resident texture/mesh budget
+    /** @brief Procedural detail near the camera (decoration, labelled; docs/terrain.md §7). */
+    bool proceduralDetail = false;
     std::string pointer = "/terrain";
 };
 

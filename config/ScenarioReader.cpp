@@ -33,7 +33,7 @@ const std::map<std::string, std::vector<std::string>>& propertyTable() {
         {"Governor", {"targetFps", "maxTauFactor", "minRenderScale"}},
         {"Terrain",
          {"store", "elevation", "tauGeom", "tauTex", "verticalExaggeration", "reference", "cacheBytes",
-          "gpuBytes"}},
+          "gpuBytes", "proceduralDetail"}},
         {"Layer",
          {"id", "kind", "source", "transfer", "operation", "enabled", "interpolate", "nodataAs"}},
         {"Source", {"store", "layer", "sequence"}},
@@ -573,6 +573,7 @@ private:
             assign(t.cacheBytes, readBytes(mC, *b, o.at("cacheBytes")));
         if (const json* b = o.get("gpuBytes"))
             assign(t.gpuBytes, readBytes(mC, *b, o.at("gpuBytes")));
+        assign(t.proceduralDetail, o.boolean("proceduralDetail"));
     }
 
     std::optional<SourceRef> source(const json& j, const std::string& ptr) {

@@ -84,15 +84,19 @@ KioskHooks::Requests KioskHooks::applyControl(anim::ScenarioClock& clock) {
         switch (c.action) {
             case service::ControlAction::Pause:
                 clock.pause();
+                r.clock = true;
                 break;
             case service::ControlAction::Play:
                 clock.resume();
+                r.clock = true;
                 break;
             case service::ControlAction::Seek:
                 clock.seek(c.time);
+                r.clock = true;
                 break;
             case service::ControlAction::Rate:
                 clock.setRate(c.rate);
+                r.clock = true;
                 break;
             case service::ControlAction::Next:
                 r.playlistStep = mPendingStep = 1;

@@ -57,6 +57,7 @@ public:
     struct Requests {
         bool reload = false;   ///< re-open the scenario now
         int playlistStep = 0;  ///< +1 next entry, -1 previous
+        bool clock = false;    ///< pause/play/seek/rate acted on the clock
     };
     /** @brief Take the queued control commands; pause/play/seek/rate act on `clock` here. */
     Requests applyControl(anim::ScenarioClock& clock);

@@ -1,14 +1,5 @@
 #include "runtime/app/PlayCommand.h"
 
-#include <chrono>
-#include <algorithm>
-#include <cmath>
-#include <optional>
-#include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <thread>
-
 #include "runtime/anim/BriefingPlayer.h"
 #include "runtime/anim/FrameGovernor.h"
 #include "runtime/anim/ScenarioClock.h"
@@ -25,6 +16,15 @@
 #include "runtime/gl/Context.h"
 #include "runtime/gl/RenderTarget.h"
 #include "runtime/platform/Display.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <thread>
 
 namespace kiosk::app {
 namespace {
@@ -76,7 +76,8 @@ int usage(const std::string& message) {
 }
 
 /** Modification stamps of the scenario and everything it includes. */
-std::vector<std::filesystem::file_time_type> stamps(const std::vector<std::filesystem::path>& files) {
+std::vector<std::filesystem::file_time_type> stamps(
+    const std::vector<std::filesystem::path>& files) {
     std::vector<std::filesystem::file_time_type> out;
     for (const auto& f : files) {
         std::error_code ec;
@@ -110,9 +111,8 @@ anim::FrameGovernor makeGovernor(const Session& s, std::optional<double> targetF
 }  // namespace
 
 int runPlayCommand(const std::vector<std::string>& argv) {
-    std::vector<std::string> valueOptions = {"display",   "size",      "max-fps",
-                                             "frames",    "connector", "drm-device",
-                                             "target-fps", "stats"};
+    std::vector<std::string> valueOptions = {"display",   "size",       "max-fps",    "frames",
+                                             "connector", "drm-device", "target-fps", "stats"};
     for (const auto& o : KioskHooks::optionNames()) valueOptions.push_back(o);
     Args args("play", valueOptions, {"windowed"});
     if (!args.parse(argv)) return usage(args.error());
@@ -144,7 +144,8 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     if (auto f = args.value("max-fps")) {
         char* end = nullptr;
         maxFps = std::strtod(f->c_str(), &end);
-        if (end == f->c_str() || *end || !(maxFps > 0)) return usage("--max-fps wants a positive number");
+        if (end == f->c_str() || *end || !(maxFps > 0))
+            return usage("--max-fps wants a positive number");
     }
     std::optional<double> targetFps;
     if (auto f = args.value("target-fps")) {
@@ -157,7 +158,8 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     if (auto f = args.value("frames")) {
         char* end = nullptr;
         frameLimit = std::strtol(f->c_str(), &end, 10);
-        if (end == f->c_str() || *end || frameLimit <= 0) return usage("--frames wants a positive integer");
+        if (end == f->c_str() || *end || frameLimit <= 0)
+            return usage("--frames wants a positive integer");
     }
     std::error_code ec;
     if (!std::filesystem::exists(scenarioPath, ec)) {
@@ -169,6 +171,8 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     int kioskExit = kExitOk;
     auto kiosk = KioskHooks::create(args, scenarioPath, kioskExit);
     if (!kiosk) return kioskExit;
+    // From here SIGTERM means "stop cleanly" (exit 0), also during a slow display or store open.
+    installStopSignals();
 
     auto display = platform::createDisplay(dopts);
     if (!display) {
@@ -199,7 +203,6 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         offscreen.emplace(std::move(*rt.value));
     }
 
-    installStopSignals();
     RealClock wall;
     anim::ScenarioClock clock = makeClock(*session);
     std::optional<anim::BriefingPlayer> briefing = makeBriefing(*session);
@@ -218,7 +221,11 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         if (input.quitRequested) break;
         kiosk->stallWhileTestFileExists();
         // Remote control (pause/play/seek/rate act on the clock; reload re-opens at the poll).
-        if (kiosk->applyControl(clock).reload) watchedStamps.clear();
+        const KioskHooks::Requests control = kiosk->applyControl(clock);
+        if (control.reload) watchedStamps.clear();
+        // A remote pause/play/seek/rate means the operator drives the clock: the briefing's
+        // chapters would otherwise keep choosing the time and the command would have no effect.
+        if (control.clock) briefing.reset();
         // Playlists: the next entry when this one is done (or next/previous was asked for);
         // a store replaced on disk: the same scenario re-opened on it at a step boundary.
         if (auto next = kiosk->nextSession(clock, *caps)) {
@@ -281,7 +288,8 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         }
         const bool ready = !session->terrain().frameInfo().holdingSequence;
         const double t = briefing ? briefing->advance(dt, ready) : clock.advance(dt, ready).time;
-        if (briefing && briefing->chapter() != session->chapterIndex()) session->setChapter(briefing->chapter());
+        if (briefing && briefing->chapter() != session->chapterIndex())
+            session->setChapter(briefing->chapter());
         auto vp = session->viewpointAt(t, "");
         // Interactive control (when the scenario allows it): the first navigation key takes the
         // camera off its path from where it is; h / Home gives it back.
@@ -297,18 +305,21 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         }
         input.clearRequests();
         const int w = dpy.width(), h = dpy.height();
-        const math::Camera cam = vp ? makeCamera(*vp, session->terrain().bounds(), w, h,
-                                                 session->scenario().camera.fovY)
-                                    : makeCamera(session->terrain().overviewViewpoint(),
-                                                 session->terrain().bounds(), w, h, 45.0);
+        const math::Camera cam =
+            vp ? makeCamera(*vp, session->terrain().bounds(), w, h, session->scenario().camera.fovY)
+               : makeCamera(session->terrain().overviewViewpoint(), session->terrain().bounds(), w,
+                            h, 45.0);
         if (offscreen)
             offscreen->bind();
         else
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
         if (briefing) {
-            const anim::ChapterSpan& span = session->chapterSpans()[std::size_t(briefing->chapter())];
+            const anim::ChapterSpan& span =
+                session->chapterSpans()[std::size_t(briefing->chapter())];
             scene::Playback playback;
-            playback.rate = briefing->atPause() || briefing->userPaused() ? 0.0 : (span.to - span.from) / span.seconds;
+            playback.rate = briefing->atPause() || briefing->userPaused()
+                                ? 0.0
+                                : (span.to - span.from) / span.seconds;
             playback.start = span.from;
             playback.end = span.to;
             session->setPlayback(playback);
@@ -321,7 +332,8 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         }
         FrameRecord rec = session->drawFrame(cam, t, w, h);
         // Camera paths are known in advance: ask for the tiles of the view two seconds ahead.
-        const double aheadTime = briefing ? briefing->timeAhead(kPrefetchSeconds) : clock.predict(kPrefetchSeconds);
+        const double aheadTime =
+            briefing ? briefing->timeAhead(kPrefetchSeconds) : clock.predict(kPrefetchSeconds);
         if (auto ahead = session->viewpointAt(aheadTime, ""))
             session->terrain().prefetch(makeCamera(*ahead, session->terrain().bounds(), w, h,
                                                    session->scenario().camera.fovY));

@@ -112,6 +112,9 @@ void Session::drawOverlays(double time, int width, int height) {
     };
     if (!mNotice.empty())
         statusLine(mNotice.size() > 160 ? mNotice.substr(0, 157) + "..." : mNotice, kWarn);
+    // Procedural detail is decoration: labelled whenever it is on screen (docs/terrain.md §7).
+    if (mScene->frameInfo().proceduralDetail)
+        statusLine("procedural detail: decoration below the data's resolution", kText);
     // The frame-rate governor at work (play): say what it trades, so nobody mistakes the
     // coarser picture for the scenario's.
     const bool governed = sc.terrain.reference == config::TerrainReference::Lod &&

@@ -20,8 +20,10 @@
 #include "runtime/render/GpuMesh.h"
 #include "runtime/render/MappingSet.h"
 #include "runtime/render/TerrainRenderer.h"
+#include "runtime/render/WarpedGridRenderer.h"
 #include "runtime/scene/Playback.h"
 #include "runtime/terrain/MeshCells.h"
+#include "runtime/terrain/MeshPosts.h"
 #include "runtime/terrain/TilePayload.h"
 #include "runtime/terrain/TileSelector.h"
 #include "runtime/terrain/TileStatsTable.h"
@@ -75,6 +77,8 @@ struct SceneFrameInfo {
     std::uint32_t mappingsCulledSize = 0;     ///< screen-space size rho below the threshold
     std::uint32_t mappingsOverCapacity = 0;   ///< active but beyond the uniform block
     double uploadMs = 0;                   ///< GPU uploads (and evicted releases) this frame
+    /** @brief The procedural detail grid drew this frame (overlay: "procedural detail"). */
+    bool proceduralDetail = false;
 };
 
 /** @brief Bytes held by the tile cache by kind, and loader requests waiting (kiosk /metrics). */
@@ -159,6 +163,16 @@ public:
     void setTau(double tauGeom, double tauTex);
     double tauGeom() const noexcept { return mOptions.tauGeom; }
     double tauTex() const noexcept { return mOptions.tauTex; }
+    /**
+     * @brief Warp passes of the procedural detail grid per frame (default 2); 0 draws a regular
+     * grid of the same vertex count (the benchmark's baseline). No effect without detail.
+     */
+    void setDetailWarpIterations(int iterations);
+    /**
+     * @brief Where the procedural detail grid drew last frame: the world rectangle only it covers
+     * (the quadtree's hole), false when it did not draw.
+     */
+    bool detailHole(glm::dvec2& min, glm::dvec2& max) const;
 
 private:
     TerrainScene() = default;
@@ -190,6 +204,23 @@ private:
     };
 
     Diagnostics buildRenderer();
+    render::LutBinding lutBinding(std::size_t k) const;
+    // TerrainSceneDetail.cpp: the procedural detail grid near the camera (issue 21).
+    struct DetailState;
+    struct DetailDeleter {
+        void operator()(DetailState* d) const;
+    };
+    Diagnostics buildDetailRenderer();
+    const terrain::MeshPosts* detailPosts(const terrain::DrawTile& t);
+    /** @brief Region, sketch, warp and upload; sets the quadtree renderer's hole. */
+    void planDetail(const math::Camera& camera, render::TerrainRenderer& quadtree);
+    void setDetailLens(int index, const render::LensBinding& lens);
+    /** @brief The sketch map over the planned region from the drawn meshes; false if incomplete. */
+    bool buildDetailSketch(double postSpacing, int finestLevel);
+    void recordDetailTile(const terrain::DrawTile& t, std::size_t layerIndex,
+                          const render::LayerBinding& binding);
+    bool detailHides(const terrain::DrawTile& t) const;
+    void drawDetail(const math::Camera& camera, const render::TerrainStyle& style);
     void bindLenses();
     /** @brief Data layers and LUTs of the projective mappings (TerrainSceneMappings.cpp). */
     Diagnostics setupMappings(const gl::Caps& caps);
@@ -264,6 +295,7 @@ private:
     std::vector<glm::dvec4> mMappingBoxes;  ///< xy footprint of each uploaded mapping
     std::vector<int> mTileMappings;
     int mRoutePointLayer = -1;
+    std::unique_ptr<DetailState, DetailDeleter> mDetail;
 };
 
 }  // namespace kiosk::scene
