@@ -1,5 +1,6 @@
 #include "runtime/app/Session.h"
 
+#include "config/DataUnits.h"
 #include "config/ScenarioReader.h"
 #include "runtime/app/ScenarioStores.h"
 #include "runtime/app/SolarLighting.h"
@@ -61,6 +62,11 @@ Result<std::unique_ptr<config::Scenario>> Session::readChecked(
     OpenedStores readers;
     diags.append(openScenarioStores(*checked, readers));
     if (diags.hasErrors()) return diags;
+    // Legends of transfer functions without units show the units the stores record.
+    config::adoptDataUnits(*checked, [&](const std::string& id) -> const io::StoreInfo* {
+        auto it = readers.find(id);
+        return it == readers.end() ? nullptr : &it->second->info();
+    });
     return {std::move(checked), std::move(diags)};
 }
 
