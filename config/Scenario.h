@@ -44,8 +44,11 @@ struct Terrain {
     double tauGeom = 2.0;  ///< screen-space geometric error threshold, pixels
     double tauTex = 1.0;   ///< texture error threshold, pixels
     double verticalExaggeration = 1.0;
-    std::int64_t cacheBytes = 512ll << 20;  ///< CPU tile cache budget
-    std::int64_t gpuBytes = 256ll << 20;    ///< resident texture/mesh budget
+    /// CPU tile cache budget; 0 (unset) = sized to the view's working set
+    /// (runtime/scene/CacheBudgets.h)
+    std::int64_t cacheBytes = 0;
+    /// resident texture/mesh budget; 0 (unset) = sized to the view's working set
+    std::int64_t gpuBytes = 0;
     std::string pointer = "/terrain";
 };
 

@@ -1,16 +1,15 @@
 #include "runtime/app/Cli.h"
 
-#include <cstdio>
-#include <exception>
-
-#include "runtime/app/ImportCommand.h"
+#include "runtime/app/ImporterExec.h"
 #include "runtime/app/InfoCommand.h"
 #include "runtime/app/PlayCommand.h"
 #include "runtime/app/RenderCommand.h"
-#include "runtime/app/TopographicCommand.h"
 #include "runtime/app/ValidateCommand.h"
 #include "runtime/core/ExitCode.h"
 #include "runtime/core/Strings.h"
+
+#include <cstdio>
+#include <exception>
 
 namespace kiosk::app {
 
@@ -19,7 +18,8 @@ std::string usageText() {
 
   play SCENARIO [--display auto|kms|x11|wayland|headless] [--size WxH] [--windowed]
                 [--max-fps N] [--frames N] [--connector NAME|INDEX] [--drm-device PATH]
-        show a scenario fullscreen until SIGINT/SIGTERM (or N frames)
+                [--stats STATS.json]
+        show a scenario fullscreen until SIGINT/SIGTERM (or N frames); --max-fps 0: unthrottled
   render SCENARIO --out OUT [--time T | --from T0 --to T1 --fps N] [--size WxH]
                   [--viewpoint NAME] [--stats STATS.json]
         render offscreen: OUT is x.png (one frame) or dir/ (dir/000001.png ...)
@@ -30,6 +30,7 @@ std::string usageText() {
                      [--altitude DEG] [--variant default|multidirectional|combined] [--shadows]
                      [--normals]
         build or extend a store (a GeoPackage) from GDAL-readable rasters and model output
+        (runs geokiosk-import, installed beside geokiosk)
   validate SCENARIO...
         check scenarios against the schema and their stores
   info STORE [--json]
@@ -60,9 +61,8 @@ int dispatch(const std::vector<std::string>& args) {
     }
     if (cmd == "play") return runPlayCommand(rest);
     if (cmd == "render") return runRenderCommand(rest);
-    if (cmd == "import" && !rest.empty() && rest[0] == "topographic")
-        return runImportTopographic({rest.begin() + 1, rest.end()});
-    if (cmd == "import") return runImportCommand(rest);
+    // The importer is a separate executable (GDAL, netCDF stay out of the kiosk process).
+    if (cmd == "import") return execImporter(rest);
     if (cmd == "validate") return runValidateCommand(rest);
     if (cmd == "info") return runInfoCommand(rest);
     std::string msg = "geokiosk: unknown command '" + cmd + "'";
@@ -75,7 +75,7 @@ int dispatch(const std::vector<std::string>& args) {
 }  // namespace
 
 int runCli(const std::vector<std::string>& args) {
-    // Third-party code may throw (std::filesystem, nlohmann, OIIO); a user must still get one
+    // Third-party code may throw (std::filesystem, nlohmann); a user must still get one
     // line and a documented status, never an abort.
     try {
         return dispatch(args);

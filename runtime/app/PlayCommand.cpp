@@ -1,15 +1,8 @@
 #include "runtime/app/PlayCommand.h"
 
-#include <chrono>
-#include <algorithm>
-#include <cmath>
-#include <optional>
-#include <cstdio>
-#include <filesystem>
-#include <thread>
-
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
+#include "runtime/app/FrameStats.h"
 #include "runtime/app/Report.h"
 #include "runtime/app/Session.h"
 #include "runtime/app/Signals.h"
@@ -21,6 +14,14 @@
 #include "runtime/gl/RenderTarget.h"
 #include "runtime/platform/Display.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <thread>
+
 namespace kiosk::app {
 namespace {
 
@@ -29,24 +30,27 @@ constexpr const char* kTag = "play";
 constexpr double kReloadPollSeconds = 0.5;
 /** How far ahead (wall seconds) the camera path is sampled for prefetching. */
 constexpr double kPrefetchSeconds = 2.0;
+/** `--stats` without `--frames` keeps the newest this many frames (5 min at 60 fps, ~2 MB). */
+constexpr std::size_t kStatsWindow = 18000;
 
 int usage(const std::string& message) {
     std::fprintf(stderr,
                  "geokiosk play: %s\nusage: geokiosk play SCENARIO [--display "
                  "auto|kms|x11|wayland|headless] [--size WxH] [--windowed] [--max-fps N] "
-                 "[--frames N] [--connector NAME] [--drm-device PATH]\n",
+                 "[--frames N] [--connector NAME] [--drm-device PATH] [--stats STATS.json]\n",
                  message.c_str());
     return kExitUsage;
 }
 
-/** Modification stamps of the scenario and everything it includes. */
-std::vector<std::filesystem::file_time_type> stamps(const std::vector<std::filesystem::path>& files) {
-    std::vector<std::filesystem::file_time_type> out;
-    for (const auto& f : files) {
+/** Modification stamps of the scenario and everything it includes (into `out`, reused: the
+ * poll runs in the frame loop, which must not allocate once running). */
+void stamps(const std::vector<std::filesystem::path>& files,
+            std::vector<std::filesystem::file_time_type>& out) {
+    out.resize(files.size());
+    for (std::size_t i = 0; i < files.size(); ++i) {
         std::error_code ec;
-        out.push_back(std::filesystem::last_write_time(f, ec));
+        out[i] = std::filesystem::last_write_time(files[i], ec);
     }
-    return out;
 }
 
 anim::ScenarioClock makeClock(const Session& s) {
@@ -57,7 +61,7 @@ anim::ScenarioClock makeClock(const Session& s) {
 }  // namespace
 
 int runPlayCommand(const std::vector<std::string>& argv) {
-    Args args("play", {"display", "size", "max-fps", "frames", "connector", "drm-device"},
+    Args args("play", {"display", "size", "max-fps", "frames", "connector", "drm-device", "stats"},
               {"windowed"});
     if (!args.parse(argv)) return usage(args.error());
     if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
@@ -86,7 +90,9 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     if (auto f = args.value("max-fps")) {
         char* end = nullptr;
         maxFps = std::strtod(f->c_str(), &end);
-        if (end == f->c_str() || *end || !(maxFps > 0)) return usage("--max-fps wants a positive number");
+        // 0 = unthrottled (as fast as the display presents).
+        if (end == f->c_str() || *end || !(maxFps >= 0) || !std::isfinite(maxFps))
+            return usage("--max-fps wants a number >= 0 (0: unthrottled)");
     }
     long frameLimit = -1;
     if (auto f = args.value("frames")) {
@@ -128,11 +134,25 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         offscreen.emplace(std::move(*rt.value));
     }
 
+    const auto statsPath = args.value("stats");
+    FrameStats stats(frameLimit > 0 ? std::size_t(frameLimit) : 0);
+    if (frameLimit <= 0) stats.keepNewest(kStatsWindow);
+    // Written on every way out of the loop once frames were drawn (stop, --frames, errors).
+    const auto writeStats = [&] {
+        if (!statsPath) return true;
+        stats.setBudgets(session->budgets());
+        Diagnostics d;
+        if (stats.write(*statsPath, d)) return true;
+        printDiagnostics(d);
+        return false;
+    };
+
     installStopSignals();
     RealClock wall;
     anim::ScenarioClock clock = makeClock(*session);
     auto watched = session->scenario().sourceFiles;
-    auto watchedStamps = stamps(watched);
+    std::vector<std::filesystem::file_time_type> watchedStamps, current;
+    stamps(watched, watchedStamps);
     double lastPoll = wall.now(), last = wall.now();
     platform::InputState input;
     std::optional<math::Viewpoint> manual;  // set while the user steers the camera
@@ -146,7 +166,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
 
         if (now - lastPoll >= kReloadPollSeconds) {
             lastPoll = now;
-            auto current = stamps(watched);
+            stamps(watched, current);
             if (current != watchedStamps) {
                 watchedStamps = current;
                 auto next = Session::open(scenarioPath, *caps);
@@ -154,7 +174,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
                     session = std::move(*next.value);
                     clock = makeClock(*session);
                     watched = session->scenario().sourceFiles;
-                    watchedStamps = stamps(watched);
+                    stamps(watched, watchedStamps);
                     KIOSK_LOG_INFO(kTag, "%s: reloaded", scenarioPath.c_str());
                 } else {
                     // Keep the last good scenario on screen; say exactly why the edit was refused.
@@ -198,22 +218,28 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         else
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
         session->setPlayback(scene::playbackOf(clock));
-        session->drawFrame(cam, t, w, h);
+        const double drawStart = wall.now();
+        FrameRecord rec = session->drawFrame(cam, t, w, h);
         // Camera paths are known in advance: ask for the tiles of the view two seconds ahead.
         if (auto ahead = session->viewpointAt(clock.predict(kPrefetchSeconds), ""))
             session->terrain().prefetch(makeCamera(*ahead, session->terrain().bounds(), w, h,
                                                    session->scenario().camera.fovY));
         if (!dpy.swapBuffers()) {
             KIOSK_LOG_ERROR(kTag, "presenting the frame failed; stopping");
+            writeStats();
             return kExitCannotRun;
         }
         if (offscreen) glFinish();
+        // Frame time as in `render`: drawing until the frame is done (here presented).
+        rec.frameMs = (wall.now() - drawStart) * 1000.0;
+        stats.add(rec);
         if (maxFps > 0) {
             const double spent = wall.now() - now;
             const double wait = 1.0 / maxFps - spent;
             if (wait > 0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
         }
     }
+    if (!writeStats()) return kExitBadInput;
     KIOSK_LOG_INFO(kTag, "stopped cleanly");
     return kExitOk;
 }

@@ -234,15 +234,20 @@ void Session::drawOverlays(double time, int width, int height) {
     o.begin(width, height);
     // The time label is laid out first: when it and the title do not fit side by side (narrow
     // previews, long titles), the title moves below it rather than being overdrawn.
-    std::string label;
+    // Formatted into fixed buffers: the label changes every frame and the frame loop must not
+    // allocate (tests/scenario/FrameAllocGLTest.cpp).
+    char label[192] = "";
     float labelW = 0.0f;
     if (sc.overlays.timeLabel.enabled && mEnd > mStart) {
-        char buf[128];
-        anim::formatTimeLabel(buf, sizeof buf, time, mStart, sc.overlays.timeLabel.format, mZone);
-        label = buf;
-        if (sc.overlays.timeLabel.showOffset && label.find("T+") == std::string::npos &&
-            label.find("T-") == std::string::npos)
-            label += "  (" + anim::formatElapsed(time - mStart) + ")";
+        const std::size_t n =
+            anim::formatTimeLabel(label, 128, time, mStart, sc.overlays.timeLabel.format, mZone);
+        const std::string_view shown(label, std::min<std::size_t>(n, 127));
+        if (sc.overlays.timeLabel.showOffset && shown.find("T+") == std::string_view::npos &&
+            shown.find("T-") == std::string_view::npos) {
+            char elapsed[64];
+            anim::formatElapsed(elapsed, sizeof elapsed, time - mStart);
+            std::snprintf(label + shown.size(), sizeof label - shown.size(), "  (%s)", elapsed);
+        }
         labelW = o.measure(label) + 24.0f;
     }
     if (!sc.title.empty() || !sc.caption.empty()) {
@@ -275,9 +280,11 @@ void Session::drawOverlays(double time, int width, int height) {
     }
     for (const auto& st : mScene->layerStatus()) {
         if (st.state == scene::LayerState::Ready && !sc.overlays.status.enabled) continue;
-        std::string text = st.id + ": " + scene::layerStateName(st.state);
-        if (!st.message.empty()) text += " - " + st.message;
-        if (text.size() > 140) text = text.substr(0, 137) + "...";
+        char text[160];
+        const int n = std::snprintf(text, sizeof text, "%s: %s%s%s", st.id.c_str(),
+                                    scene::layerStateName(st.state),
+                                    st.message.empty() ? "" : " - ", st.message.c_str());
+        if (n > 140) std::snprintf(text + 137, sizeof text - 137, "...");
         const float w = o.measure(text) + 16;
         o.rect(12, y - line, w, line + 6, kPanel);
         o.text(20, y - 4, text, st.state == scene::LayerState::Ready ? kDim : kWarn);
@@ -292,12 +299,21 @@ void Session::drawLegend(const config::LegendOverlay& legend, int width, int hei
     const config::TransferFunctionDef* def = mScenario->findTransfer(legend.transfer);
     if (!lut || !def) return;
     const color::TransferFunction& tf = *lut->function;
-    std::string title = !legend.title.empty() ? legend.title : !def->label.empty() ? def->label : def->name;
-    if (!tf.units.empty()) title += " (" + tf.units + ")";
+    // Title, ticks and patches depend only on the scenario: made once, drawn every frame.
+    if (mLegendFor != lut) {
+        mLegendFor = lut;
+        mLegendTitle = !legend.title.empty() ? legend.title
+                       : !def->label.empty() ? def->label
+                                             : def->name;
+        if (!tf.units.empty()) mLegendTitle += " (" + tf.units + ")";
+        mLegendTicks = color::legendTicks(tf);
+        mLegendPatches = color::legendPatches(tf);
+    }
+    const std::string& title = mLegendTitle;
     const float line = float(o.font().lineHeight());
     const float barW = line * 12.0f, barH = line * 0.8f;
     if (tf.discrete()) {
-        auto patches = color::legendPatches(tf);
+        const auto& patches = mLegendPatches;
         float w = o.measure(title);
         for (const auto& p : patches) w = std::max(w, 28 + o.measure(p.label));
         const float h = line * float(patches.size() + 1) + 20;
@@ -319,7 +335,7 @@ void Session::drawLegend(const config::LegendOverlay& legend, int width, int hei
     o.text(x + 12, y + 8 + float(o.font().ascent()), title, kText);
     const float barX = x + 12, barY = y + 12 + line;
     o.image(barX, barY, barW, barH, lut->texture.id());
-    for (const auto& t : color::legendTicks(tf)) {
+    for (const auto& t : mLegendTicks) {
         const float tx = barX + float(t.position) * barW;
         o.rect(tx - 0.5f, barY + barH, 1, 5, kText);
         const float tw = o.measure(t.label);

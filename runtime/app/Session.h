@@ -1,20 +1,21 @@
 #pragma once
 
-#include <filesystem>
-#include <functional>
-#include <memory>
-#include <optional>
-#include <string>
-
 #include "config/Scenario.h"
 #include "runtime/anim/CameraPath.h"
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/anim/TimeLabel.h"
 #include "runtime/app/FrameStats.h"
+#include "runtime/color/Legend.h"
 #include "runtime/core/Result.h"
 #include "runtime/gl/Context.h"
 #include "runtime/render/OverlayRenderer.h"
 #include "runtime/scene/TerrainScene.h"
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
 
 namespace kiosk::app {
 
@@ -57,6 +58,9 @@ public:
     /** @brief How the clock plays (rate, range, seeks): sizes the sequences' prefetch. */
     void setPlayback(const scene::Playback& playback) { mPlayback = playback; }
 
+    /** @brief Budgets in effect (cache, uploads, prefetch) for `--stats`. */
+    std::vector<std::pair<std::string, double>> budgets() const { return mScene->budgets(); }
+
     /** @brief Update tiles for the view and draw terrain + overlays into the bound framebuffer. */
     FrameRecord drawFrame(const math::Camera& camera, double time, int width, int height);
 
@@ -70,6 +74,10 @@ private:
     std::optional<render::OverlayRenderer> mOverlay;
     int mOverlayFontPx = 0;
     std::string mNotice;
+    const scene::SceneLut* mLegendFor = nullptr;  ///< the legend below was made for this LUT
+    std::string mLegendTitle;
+    std::vector<color::LegendTick> mLegendTicks;
+    std::vector<color::LegendPatch> mLegendPatches;
     anim::CameraPath mPath;
     anim::TimeZone mZone;
     double mStart = 0, mEnd = 0;
