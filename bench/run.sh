@@ -9,7 +9,8 @@ cd "$ROOT"
 "$ROOT/tools/prepare-demo.sh" "$BUILD/geokiosk" >&2
 export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/share/glvnd/egl_vendor.d/50_mesa.json
 export GALLIUM_DRIVER=llvmpipe
-"$BUILD/bench/bench-frame" scenarios/demo/rainier.json --frames ${KIOSK_BENCH_FRAMES:-60}
+"$BUILD/bench/bench-frame" scenarios/demo/rainier.json --frames ${KIOSK_BENCH_FRAMES:-60} \
+    --target-fps ${KIOSK_BENCH_TARGET_FPS:-10}
 # The seed paper's data set (Wahl 2004): Puget Sound 1025^2 at 160 m, terrain only.
 PUGET=$ROOT/../shared/data/puget_sound_heightmap/ps_height_1k.png
 if [[ -f "$PUGET" ]]; then
@@ -29,3 +30,7 @@ fi
 "$BUILD/bench/bench-import"                 # 4k DEM vs gdal_translate + gdaladdo (--sizes 4096,16384)
 "$BUILD/bench/hillshade/hillshade_bench"    # 4k DEM vs gdaldem hillshade (--with-16k)
 "$BUILD/bench/bench-replay" scenarios/demo/rainier.json --anuga "$ROOT/../shared/data/anuga_sww_flood_timeseries/cairns.sww"  # sequences at 1280x720/1920x1080 vs the fill bound
+# Kiosk operation (issue 15): soak (KIOSK_SOAK_FRAMES, default 1,000,000), restart, /metrics scrape.
+/usr/bin/python3 "$ROOT/bench/kiosk/kiosk_bench.py" soak "$BUILD/geokiosk" "$ROOT" --frames ${KIOSK_SOAK_FRAMES:-1000000}
+/usr/bin/python3 "$ROOT/bench/kiosk/kiosk_bench.py" restart "$BUILD/geokiosk" "$ROOT"
+/usr/bin/python3 "$ROOT/bench/kiosk/kiosk_bench.py" scrape "$BUILD/geokiosk" "$ROOT"

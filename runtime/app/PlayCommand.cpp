@@ -1,8 +1,18 @@
 #include "runtime/app/PlayCommand.h"
 
+#include <chrono>
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <thread>
+
+#include "runtime/anim/FrameGovernor.h"
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
-#include "runtime/app/FrameStats.h"
+#include "runtime/app/KioskHooks.h"
 #include "runtime/app/Report.h"
 #include "runtime/app/Session.h"
 #include "runtime/app/Signals.h"
@@ -14,14 +24,6 @@
 #include "runtime/gl/RenderTarget.h"
 #include "runtime/platform/Display.h"
 
-#include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <optional>
-#include <thread>
-
 namespace kiosk::app {
 namespace {
 
@@ -30,17 +32,48 @@ constexpr const char* kTag = "play";
 constexpr double kReloadPollSeconds = 0.5;
 /** How far ahead (wall seconds) the camera path is sampled for prefetching. */
 constexpr double kPrefetchSeconds = 2.0;
-/** `--stats` without `--frames` keeps the newest this many frames (5 min at 60 fps, ~2 MB). */
-constexpr std::size_t kStatsWindow = 18000;
+
+/**
+ * Test hook: GEOKIOSK_TEST_FRAME_COST_MS=MS[:FRAMES] adds an artificial cost to each of the
+ * first FRAMES frames (all when omitted), modelled on a fill-bound frame: MS at the scenario's
+ * settings, times the rendered fraction of the pixels and the scenario's tauGeom over the one
+ * used. Lets the governor be tested on any machine (tests/scenario/GovernorPlayTest).
+ */
+class TestFrameCost {
+public:
+    TestFrameCost() {
+        const char* v = std::getenv("GEOKIOSK_TEST_FRAME_COST_MS");
+        if (!v || !*v) return;
+        char* end = nullptr;
+        mMs = std::strtod(v, &end);
+        if (end && *end == ':') mFrames = std::strtol(end + 1, nullptr, 10);
+        if (!(mMs > 0)) mMs = 0;
+    }
+    void spend(long frame, Session& s) const {
+        if (mMs <= 0 || (mFrames >= 0 && frame >= mFrames)) return;
+        const double scale = s.renderScale();
+        const double tau = s.scenario().terrain.tauGeom / std::max(1e-9, s.terrain().tauGeom());
+        const double ms = mMs * scale * scale * tau;
+        std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(ms));
+    }
+
+private:
+    double mMs = 0;
+    long mFrames = -1;
+};
 
 int usage(const std::string& message) {
     std::fprintf(stderr,
                  "geokiosk play: %s\nusage: geokiosk play SCENARIO [--display "
                  "auto|kms|x11|wayland|headless] [--size WxH] [--windowed] [--max-fps N] "
-                 "[--frames N] [--connector NAME] [--drm-device PATH] [--stats STATS.json]\n",
+                 "[--frames N] [--connector NAME] [--drm-device PATH] [--listen HOST:PORT] "
+                 "[--token-file FILE] [--target-fps N] [--stats STATS.json]\n",
                  message.c_str());
     return kExitUsage;
 }
+
+/** `--stats` without `--frames` keeps the newest this many frames (5 min at 60 fps, ~2 MB). */
+constexpr std::size_t kStatsWindow = 18000;
 
 /** Modification stamps of the scenario and everything it includes (into `out`, reused: the
  * poll runs in the frame loop, which must not allocate once running). */
@@ -58,14 +91,27 @@ anim::ScenarioClock makeClock(const Session& s) {
     return clock ? *clock.value : anim::ScenarioClock();
 }
 
+/** The scenario's governor, `--target-fps` overriding its frame rate. */
+anim::FrameGovernor makeGovernor(const Session& s, std::optional<double> targetFps) {
+    const config::Governor& g = s.scenario().governor;
+    anim::GovernorSettings gs;
+    gs.targetFps = targetFps.value_or(g.targetFps);
+    gs.maxTauFactor = g.maxTauFactor;
+    gs.minRenderScale = g.minRenderScale;
+    return anim::FrameGovernor(gs, s.scenario().terrain.tauGeom, s.scenario().terrain.tauTex);
+}
+
 }  // namespace
 
 int runPlayCommand(const std::vector<std::string>& argv) {
-    Args args("play", {"display", "size", "max-fps", "frames", "connector", "drm-device", "stats"},
-              {"windowed"});
+    std::vector<std::string> valueOptions = {"display",   "size",      "max-fps",
+                                             "frames",    "connector", "drm-device",
+                                             "target-fps", "stats"};
+    for (const auto& o : KioskHooks::optionNames()) valueOptions.push_back(o);
+    Args args("play", valueOptions, {"windowed"});
     if (!args.parse(argv)) return usage(args.error());
     if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
-    const std::filesystem::path scenarioPath = args.positionals()[0];
+    std::filesystem::path scenarioPath = args.positionals()[0];
     platform::DisplayOptions dopts;
     if (auto d = args.value("display")) {
         auto kind = platform::parseDisplayKind(*d);
@@ -84,6 +130,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         dopts.height = wh->second;
     }
     dopts.windowed = args.flag("windowed");
+    dopts.shouldStop = stopRequested;
     dopts.connector = args.value("connector").value_or("");
     dopts.drmDevice = args.value("drm-device").value_or("");
     double maxFps = 0;
@@ -93,6 +140,13 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         // 0 = unthrottled (as fast as the display presents).
         if (end == f->c_str() || *end || !(maxFps >= 0) || !std::isfinite(maxFps))
             return usage("--max-fps wants a number >= 0 (0: unthrottled)");
+    }
+    std::optional<double> targetFps;
+    if (auto f = args.value("target-fps")) {
+        char* end = nullptr;
+        targetFps = std::strtod(f->c_str(), &end);
+        if (end == f->c_str() || *end || !(*targetFps >= 0) || *targetFps > 240)
+            return usage("--target-fps wants a number of frames per second in 0..240 (0: off)");
     }
     long frameLimit = -1;
     if (auto f = args.value("frames")) {
@@ -106,6 +160,11 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         return kExitBadInput;
     }
 
+    // A kiosk file (playlist) or a scenario; systemd notify and the HTTP service.
+    int kioskExit = kExitOk;
+    auto kiosk = KioskHooks::create(args, scenarioPath, kioskExit);
+    if (!kiosk) return kioskExit;
+
     auto display = platform::createDisplay(dopts);
     if (!display) {
         printDiagnostics(display.diagnostics);
@@ -118,12 +177,13 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         return kExitCannotRun;
     }
     KIOSK_LOG_INFO(kTag, "%s, %s", dpy.describe().c_str(), caps->renderer.c_str());
-    auto opened = Session::open(scenarioPath, *caps);
+    auto opened = kiosk->openFirst(*caps);
     if (!opened) {
         printDiagnostics(opened.diagnostics);
         return kExitBadInput;
     }
     std::unique_ptr<Session> session = std::move(*opened.value);
+    scenarioPath = kiosk->currentScenario();
     std::optional<gl::RenderTarget> offscreen;
     if (!dpy.hasSurface()) {
         auto rt = gl::RenderTarget::create(dpy.width(), dpy.height());
@@ -134,22 +194,18 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         offscreen.emplace(std::move(*rt.value));
     }
 
-    const auto statsPath = args.value("stats");
-    FrameStats stats(frameLimit > 0 ? std::size_t(frameLimit) : 0);
-    if (frameLimit <= 0) stats.keepNewest(kStatsWindow);
-    // Written on every way out of the loop once frames were drawn (stop, --frames, errors).
-    const auto writeStats = [&] {
-        if (!statsPath) return true;
-        stats.setBudgets(session->budgets());
-        Diagnostics d;
-        if (stats.write(*statsPath, d)) return true;
-        printDiagnostics(d);
-        return false;
-    };
-
     installStopSignals();
     RealClock wall;
     anim::ScenarioClock clock = makeClock(*session);
+    anim::FrameGovernor governor = makeGovernor(*session, targetFps);
+    TestFrameCost testCost;
+    std::optional<FrameStats> stats;
+    if (args.value("stats")) {
+        // Preallocated: recording never allocates in the frame loop. Without --frames only the
+        // newest kStatsWindow frames are kept (a kiosk plays for weeks).
+        stats.emplace(frameLimit > 0 ? std::size_t(frameLimit) : 0);
+        if (frameLimit <= 0) stats->keepNewest(kStatsWindow);
+    }
     auto watched = session->scenario().sourceFiles;
     std::vector<std::filesystem::file_time_type> watchedStamps, current;
     stamps(watched, watchedStamps);
@@ -160,6 +216,23 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         if (stopRequested()) break;
         dpy.pollInput(input);
         if (input.quitRequested) break;
+        kiosk->stallWhileTestFileExists();
+        // Remote control (pause/play/seek/rate act on the clock; reload re-opens at the poll).
+        if (kiosk->applyControl(clock).reload) watchedStamps.clear();
+        // Playlists: the next entry when this one is done (or next/previous was asked for);
+        // a store replaced on disk: the same scenario re-opened on it at a step boundary.
+        if (auto next = kiosk->nextSession(clock, *caps)) {
+            session = std::move(next);
+            const double was = clock.current();
+            clock = makeClock(*session);
+            governor = makeGovernor(*session, targetFps);
+            if (kiosk->keepsDataTime()) clock.seek(was);
+            scenarioPath = kiosk->currentScenario();
+            watched = session->scenario().sourceFiles;
+            stamps(watched, watchedStamps);
+            manual.reset();
+        }
+        session->setCurtain(kiosk->curtain());
         const double now = wall.now();
         const double dt = now - last;
         last = now;
@@ -173,14 +246,17 @@ int runPlayCommand(const std::vector<std::string>& argv) {
                 if (next) {
                     session = std::move(*next.value);
                     clock = makeClock(*session);
+                    governor = makeGovernor(*session, targetFps);
                     watched = session->scenario().sourceFiles;
                     stamps(watched, watchedStamps);
                     KIOSK_LOG_INFO(kTag, "%s: reloaded", scenarioPath.c_str());
+                    kiosk->noteReload(true);
                 } else {
                     // Keep the last good scenario on screen; say exactly why the edit was refused.
                     for (const auto& d : next.diagnostics.items())
                         KIOSK_LOG_ERROR(kTag, "edit rejected, keeping the previous scenario: %s",
                                         d.format().c_str());
+                    kiosk->noteReload(false);
                     if (const Diagnostic* e = next.diagnostics.firstError())
                         session->setNotice("scenario edit rejected: " + e->format());
                 }
@@ -218,7 +294,10 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         else
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
         session->setPlayback(scene::playbackOf(clock));
-        const double drawStart = wall.now();
+        if (governor.state().active) {
+            session->terrain().setTau(governor.state().tauGeom, governor.state().tauTex);
+            session->setRenderScale(governor.state().renderScale);
+        }
         FrameRecord rec = session->drawFrame(cam, t, w, h);
         // Camera paths are known in advance: ask for the tiles of the view two seconds ahead.
         if (auto ahead = session->viewpointAt(clock.predict(kPrefetchSeconds), ""))
@@ -226,20 +305,30 @@ int runPlayCommand(const std::vector<std::string>& argv) {
                                                    session->scenario().camera.fovY));
         if (!dpy.swapBuffers()) {
             KIOSK_LOG_ERROR(kTag, "presenting the frame failed; stopping");
-            writeStats();
             return kExitCannotRun;
         }
         if (offscreen) glFinish();
-        // Frame time as in `render`: drawing until the frame is done (here presented).
-        rec.frameMs = (wall.now() - drawStart) * 1000.0;
-        stats.add(rec);
+        testCost.spend(frame, *session);
+        // The frame's cost as the viewer sees it (update, draw, present), not the --max-fps wait.
+        rec.frameMs = (wall.now() - now) * 1000.0;
+        governor.frameDone(rec.frameMs);
+        if (stats) stats->add(rec);
+        kiosk->frameDone(*session, clock, scenarioPath, rec.frameMs, t);
         if (maxFps > 0) {
             const double spent = wall.now() - now;
             const double wait = 1.0 / maxFps - spent;
             if (wait > 0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
         }
     }
-    if (!writeStats()) return kExitBadInput;
+    kiosk->service().stopping();
+    if (stats) {
+        stats->setBudgets(session->budgets());
+        Diagnostics d;
+        if (!stats->write(*args.value("stats"), d)) {
+            printDiagnostics(d);
+            return kExitBadInput;
+        }
+    }
     KIOSK_LOG_INFO(kTag, "stopped cleanly");
     return kExitOk;
 }

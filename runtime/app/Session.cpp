@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "config/MeaningCheck.h"
@@ -128,9 +129,32 @@ Result<math::Viewpoint> Session::viewpointAt(double time, const std::string& vie
     return mScene->overviewViewpoint();
 }
 
+void Session::setRenderScale(double scale) {
+    mRenderScale = std::clamp(scale, 0.1, 1.0);
+}
+
+bool Session::bindScaledTarget(int width, int height, int& outFbo) {
+    const int w = std::max(1, int(std::lround(width * mRenderScale)));
+    const int h = std::max(1, int(std::lround(height * mRenderScale)));
+    if (w == width && h == height) return false;
+    if (!mScaled || mScaled->width() != w || mScaled->height() != h) {
+        auto rt = gl::RenderTarget::create(w, h);
+        if (!rt) return false;  // no smaller target: render at full size
+        mScaled.emplace(std::move(*rt.value));
+    }
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &outFbo);
+    mScaled->bind();
+    glViewport(0, 0, w, h);
+    return true;
+}
+
 FrameRecord Session::drawFrame(const math::Camera& camera, double time, int width, int height) {
     const auto& sc = *mScenario;
-    glViewport(0, 0, width, height);
+    // Render scale < 1 (the frame-rate governor): the terrain goes to a smaller target that is
+    // then stretched over the output; overlays are drawn at the output's own resolution.
+    GLint outFbo = 0;
+    const bool scaled = bindScaledTarget(width, height, outFbo);
+    if (!scaled) glViewport(0, 0, width, height);
     glClearColor(0.62f, 0.71f, 0.80f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     using PhaseClock = std::chrono::steady_clock;
@@ -169,9 +193,17 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     for (const auto& l : sc.layers)
         if (l.enabled && (l.kind == config::LayerKind::Topographic || l.kind == config::LayerKind::Normals))
             style.geometryLighting = 0.0f;
-    style.tauTex = float(sc.terrain.tauTex);
+    style.tauTex = float(mScene->tauTex());
     const auto tDraw = PhaseClock::now();
     mScene->draw(camera, style);
+    if (scaled) {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, mScaled->framebuffer());
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(outFbo));
+        glBlitFramebuffer(0, 0, mScaled->width(), mScaled->height(), 0, 0, width, height,
+                          GL_COLOR_BUFFER_BIT, GL_LINEAR);
+        glBindFramebuffer(GL_FRAMEBUFFER, GLuint(outFbo));
+        glViewport(0, 0, width, height);
+    }
     const double drawMs = msSince(tDraw);
     const auto tOverlay = PhaseClock::now();
     drawOverlays(time, width, height);
@@ -197,6 +229,9 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     r.uploads = f.uploads;
     r.drawMs = drawMs;
     r.overlayMs = overlayMs;
+    r.tauGeom = mScene->tauGeom();
+    r.tauTex = mScene->tauTex();
+    r.renderScale = scaled ? double(mScaled->width()) / double(width) : 1.0;
     return r;
 }
 
@@ -238,15 +273,21 @@ void Session::drawOverlays(double time, int width, int height) {
     // allocate (tests/scenario/FrameAllocGLTest.cpp).
     char label[192] = "";
     float labelW = 0.0f;
+    // Tiles late: a sequence holds an older step. Label the time actually drawn and say so.
+    const auto& frameInfo = mScene->frameInfo();
+    const bool buffering = frameInfo.holdingSequence;
+    if (buffering && !std::isnan(frameInfo.heldDataTime)) time = frameInfo.heldDataTime;
     if (sc.overlays.timeLabel.enabled && mEnd > mStart) {
         const std::size_t n =
             anim::formatTimeLabel(label, 128, time, mStart, sc.overlays.timeLabel.format, mZone);
-        const std::string_view shown(label, std::min<std::size_t>(n, 127));
+        std::size_t len = std::min<std::size_t>(n, 127);
+        if (buffering) len += std::size_t(std::snprintf(label + len, sizeof label - len, "  buffering"));
+        const std::string_view shown(label, len);
         if (sc.overlays.timeLabel.showOffset && shown.find("T+") == std::string_view::npos &&
             shown.find("T-") == std::string_view::npos) {
             char elapsed[64];
             anim::formatElapsed(elapsed, sizeof elapsed, time - mStart);
-            std::snprintf(label + shown.size(), sizeof label - shown.size(), "  (%s)", elapsed);
+            std::snprintf(label + len, sizeof label - len, "  (%s)", elapsed);
         }
         labelW = o.measure(label) + 24.0f;
     }
@@ -278,6 +319,23 @@ void Session::drawOverlays(double time, int width, int height) {
         o.text(20, y - 4, text, kWarn);
         y -= line + 8;
     }
+    // The frame-rate governor at work (play): say what it trades, so nobody mistakes the
+    // coarser picture for the scenario's.
+    const bool governed = sc.terrain.reference == config::TerrainReference::Lod &&
+                          (mScene->tauGeom() != sc.terrain.tauGeom ||
+                           mScene->tauTex() != sc.terrain.tauTex || mRenderScale < 1.0);
+    if (governed) {
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "frame-rate governor: tauGeom %.3g px (scenario %.3g), tauTex %.3g px (%.3g), "
+                      "render scale %.2f",
+                      mScene->tauGeom(), sc.terrain.tauGeom, mScene->tauTex(), sc.terrain.tauTex,
+                      mRenderScale);
+        const float w = o.measure(text) + 16;
+        o.rect(12, y - line, w, line + 6, kPanel);
+        o.text(20, y - 4, text, kDim);
+        y -= line + 8;
+    }
     for (const auto& st : mScene->layerStatus()) {
         if (st.state == scene::LayerState::Ready && !sc.overlays.status.enabled) continue;
         char text[160];
@@ -290,6 +348,7 @@ void Session::drawOverlays(double time, int width, int height) {
         o.text(20, y - 4, text, st.state == scene::LayerState::Ready ? kDim : kWarn);
         y -= line + 8;
     }
+    if (mCurtain > 0.0f) o.rect(0, 0, float(width), float(height), glm::vec4(0, 0, 0, mCurtain));
     o.end();
 }
 

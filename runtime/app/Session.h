@@ -8,6 +8,7 @@
 #include "runtime/color/Legend.h"
 #include "runtime/core/Result.h"
 #include "runtime/gl/Context.h"
+#include "runtime/gl/RenderTarget.h"
 #include "runtime/render/OverlayRenderer.h"
 #include "runtime/scene/TerrainScene.h"
 
@@ -50,6 +51,8 @@ public:
 
     /** @brief A line shown on screen until replaced (e.g. why a scenario edit was refused). */
     void setNotice(std::string notice) { mNotice = std::move(notice); }
+    /** @brief Black drawn over everything with this opacity (playlist fades; 0: none). */
+    void setCurtain(float alpha) { mCurtain = alpha; }
 
     /** @brief Select and load tiles for the view without drawing (render waits with this). */
     void prepare(const math::Camera& camera, double time) {
@@ -64,10 +67,18 @@ public:
     /** @brief Update tiles for the view and draw terrain + overlays into the bound framebuffer. */
     FrameRecord drawFrame(const math::Camera& camera, double time, int width, int height);
 
+    /**
+     * @brief Fraction of the output size (per axis) the terrain is rendered at, then stretched
+     * (the frame-rate governor's last lever; `play` only). 1 = full size.
+     */
+    void setRenderScale(double scale);
+    double renderScale() const noexcept { return mRenderScale; }
+
 private:
     Session() = default;
     void drawOverlays(double time, int width, int height);
     void drawLegend(const config::LegendOverlay& legend, int width, int height);
+    bool bindScaledTarget(int width, int height, int& outFbo);
 
     std::unique_ptr<config::Scenario> mScenario;
     std::unique_ptr<scene::TerrainScene> mScene;
@@ -78,10 +89,13 @@ private:
     std::string mLegendTitle;
     std::vector<color::LegendTick> mLegendTicks;
     std::vector<color::LegendPatch> mLegendPatches;
+    float mCurtain = 0.0f;
     anim::CameraPath mPath;
     anim::TimeZone mZone;
     double mStart = 0, mEnd = 0;
     scene::Playback mPlayback;
+    double mRenderScale = 1.0;
+    std::optional<gl::RenderTarget> mScaled;  ///< terrain target while mRenderScale < 1
 };
 
 /** @brief Camera for a viewpoint with clip planes fitted to the scene. */

@@ -1,5 +1,10 @@
 #pragma once
 
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
 #include "config/Scenario.h"
 #include "runtime/anim/FrameBracket.h"
 #include "runtime/anim/PrefetchPlanner.h"
@@ -50,6 +55,8 @@ struct SceneFrameInfo {
     std::uint32_t requests = 0;
     std::uint32_t uploads = 0;
     bool holdingSequence = false;  ///< a sequence shows an older complete frame pair
+    /** @brief While holding with a pair on screen: the data time that pair shows (else NaN). */
+    double heldDataTime = std::numeric_limits<double>::quiet_NaN();
     /** @brief Tiles of one sequence drew different frames (must never happen: atomic steps). */
     bool mixedSequenceFrames = false;
     std::int32_t shownFrameA = -1;  ///< first sequence layer: frames on screen (-1: none)
@@ -73,6 +80,14 @@ struct SceneFrameInfo {
     std::uint32_t mappingsCulledSize = 0;     ///< screen-space size rho below the threshold
     std::uint32_t mappingsOverCapacity = 0;   ///< active but beyond the uniform block
     double uploadMs = 0;                   ///< GPU uploads (and evicted releases) this frame
+};
+
+/** @brief Bytes held by the tile cache by kind, and loader requests waiting (kiosk /metrics). */
+struct SceneCacheUsage {
+    std::uint64_t cpuTiles = 0;     ///< CPU payloads (budget terrain.cache_bytes)
+    std::uint64_t gpuTextures = 0;  ///< uploaded imagery / raster textures
+    std::uint64_t gpuMeshes = 0;    ///< uploaded terrain meshes
+    std::uint32_t loaderQueue = 0;  ///< requests waiting for the loader thread
 };
 
 /** @brief A transfer function ready for the GPU and the legend. */
@@ -120,6 +135,8 @@ public:
     bool settled() const noexcept { return mSettled; }
     const SceneFrameInfo& frameInfo() const noexcept { return mFrame; }
     const std::vector<LayerStatus>& layerStatus() const noexcept { return mStatus; }
+    /** @brief Cache bytes by kind (TerrainSceneUsage.cpp); walks the GPU slots, no allocation. */
+    SceneCacheUsage cacheUsage() const;
 
     /** @brief World bounds of the data: extent and min/max elevation. */
     const math::Aabb& bounds() const noexcept { return mBounds; }
@@ -140,6 +157,12 @@ public:
      * the sequences' prefetch bytes (TerrainSceneBudgets.cpp).
      */
     std::vector<std::pair<std::string, double>> budgets() const;
+     * @brief Screen-space error thresholds for the next selections (the frame-rate governor's
+     * lever); the loader's meshes do not depend on them. Ignored for the full-resolution reference.
+     */
+    void setTau(double tauGeom, double tauTex);
+    double tauGeom() const noexcept { return mOptions.tauGeom; }
+    double tauTex() const noexcept { return mOptions.tauTex; }
 
 private:
     TerrainScene() = default;
