@@ -27,10 +27,6 @@
 #include "runtime/terrain/TileSelector.h"
 #include "runtime/terrain/TileStatsTable.h"
 
-#include <memory>
-#include <string>
-#include <vector>
-
 namespace kiosk::scene {
 
 /** @brief osgEarth-style layer status: a bad layer degrades itself, never the process. */
@@ -157,6 +153,7 @@ public:
      * the sequences' prefetch bytes (TerrainSceneBudgets.cpp).
      */
     std::vector<std::pair<std::string, double>> budgets() const;
+    /**
      * @brief Screen-space error thresholds for the next selections (the frame-rate governor's
      * lever); the loader's meshes do not depend on them. Ignored for the full-resolution reference.
      */
@@ -232,9 +229,8 @@ private:
     std::unique_ptr<terrain::CacheResidency> mPrefetchResidency;
     terrain::TileStatsTable mStats;
     std::unique_ptr<loader::TileLoader> mLoader;
-    loader::UploadBudget mBudget{CacheDefaults::kUploadBytesPerFrame,
-                                 CacheDefaults::kUploadMsPerFrame};
-    bool mAutoCpu = false, mAutoGpu = false;         ///< scenario left the budget to the view
+    loader::UploadBudget mBudget{CacheDefaults::kUploadBytesPerFrame, CacheDefaults::kUploadMsPerFrame};
+    bool mAutoCpu = false, mAutoGpu = false;       ///< scenario left the budget to the view
     std::size_t mViewCpuHigh = 0, mViewGpuHigh = 0;  ///< largest view working set so far
     std::uint64_t mAheadBytes = 0;  ///< sequences' planned frames over the view (last frame)
     std::vector<GpuSlot> mGpu;
@@ -260,7 +256,7 @@ private:
     Playback mPlayback;
     anim::LoadTimeEstimator mTileLoad{0.005};  ///< seconds per sequence tile on the loader
     std::vector<terrain::TileRequest> mSequencePrefetch;
-    std::vector<anim::FrameBracket> mWanted;         ///< per layer: the frame pair the clock wants
+    std::vector<anim::FrameBracket> mWanted;  ///< per layer: the frame pair the clock wants
     std::vector<terrain::TileRequest> mPrefetchAll;  ///< camera prefetch still missing, as sent
     /** @brief One scenario mapping and the array layers it samples. */
     struct SceneMapping {
