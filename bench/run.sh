@@ -29,3 +29,4 @@ fi
 "$BUILD/bench/bench-import"                 # 4k DEM vs gdal_translate + gdaladdo (--sizes 4096,16384)
 "$BUILD/bench/hillshade/hillshade_bench"    # 4k DEM vs gdaldem hillshade (--with-16k)
 "$BUILD/bench/bench-replay" scenarios/demo/rainier.json --anuga "$ROOT/../shared/data/anuga_sww_flood_timeseries/cairns.sww"  # sequences at 1280x720/1920x1080 vs the fill bound
+"$BUILD/bench/bench-wall" scenarios/demo/rainier.json   # swap barrier, 4/16 follower processes vs one node's frame

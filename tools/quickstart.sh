@@ -14,7 +14,8 @@ JOBS=${KIOSK_JOBS:-$(nproc)}
 BUILD_PKGS=(build-essential cmake ninja-build pkg-config git
     libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libgbm-dev libdrm-dev libx11-dev
     libglm-dev libopenimageio-dev libsqlite3-dev nlohmann-json3-dev libgtest-dev
-    libgdal-dev gdal-bin libnetcdf-dev libfreetype-dev fonts-dejavu-core)
+    libgdal-dev gdal-bin libnetcdf-dev libfreetype-dev fonts-dejavu-core
+    libzmq3-dev cppzmq-dev)
 TEST_PKGS=(xvfb xauth glslang-tools clang-14 libclang-rt-14-dev)
 
 usage() {

@@ -13,6 +13,7 @@
 #include "runtime/app/Report.h"
 #include "runtime/app/Session.h"
 #include "runtime/app/Signals.h"
+#include "runtime/app/WallNode.h"
 #include "runtime/core/Clock.h"
 #include "runtime/core/ExitCode.h"
 #include "runtime/core/Log.h"
@@ -34,7 +35,8 @@ int usage(const std::string& message) {
     std::fprintf(stderr,
                  "geokiosk play: %s\nusage: geokiosk play SCENARIO [--display "
                  "auto|kms|x11|wayland|headless] [--size WxH] [--windowed] [--max-fps N] "
-                 "[--frames N] [--connector NAME] [--drm-device PATH]\n",
+                 "[--frames N] [--connector NAME] [--drm-device PATH] [--wall WALL.json --screen ID "
+                 "[--wall-log LOG.jsonl]]\n",
                  message.c_str());
     return kExitUsage;
 }
@@ -57,7 +59,7 @@ anim::ScenarioClock makeClock(const Session& s) {
 }  // namespace
 
 int runPlayCommand(const std::vector<std::string>& argv) {
-    Args args("play", {"display", "size", "max-fps", "frames", "connector", "drm-device"},
+    Args args("play", {"display", "size", "max-fps", "frames", "connector", "drm-device", "wall", "screen", "wall-log"},
               {"windowed"});
     if (!args.parse(argv)) return usage(args.error());
     if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
@@ -78,6 +80,15 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         if (!wh) return usage("--size wants WIDTHxHEIGHT, got '" + *size + "'");
         dopts.width = wh->first;
         dopts.height = wh->second;
+    }
+    int wallExit = -1;
+    std::optional<WallScreen> wallScreen = wallScreenFromArgs(args, wallExit);
+    if (wallExit >= 0) return wallExit;
+    if (!wallScreen && args.value("wall-log")) return usage("--wall-log needs --wall");
+    if (wallScreen) {
+        if (args.value("size")) return usage("with --wall the screen's size comes from the wall file; drop --size");
+        dopts.width = wallScreen->width();
+        dopts.height = wallScreen->height();
     }
     dopts.windowed = args.flag("windowed");
     dopts.connector = args.value("connector").value_or("");
@@ -128,6 +139,15 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         offscreen.emplace(std::move(*rt.value));
     }
 
+    std::unique_ptr<WallNode> wallNode;
+    if (wallScreen) {
+        auto node = WallNode::create(std::move(*wallScreen), args.value("wall-log").value_or(""));
+        if (!node) {
+            printDiagnostics(node.diagnostics);
+            return kExitCannotRun;
+        }
+        wallNode = std::move(*node.value);
+    }
     installStopSignals();
     RealClock wall;
     anim::ScenarioClock clock = makeClock(*session);
@@ -172,8 +192,9 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             const auto keys = session->terrain().sequenceKeyTimes();
             input.step > 0 ? clock.stepToNextKey(keys) : clock.stepToPreviousKey(keys);
         }
-        const bool ready = !session->terrain().frameInfo().holdingSequence;
-        const double t = clock.advance(dt, ready).time;
+        // On a wall the clock waits for the step to be resident on every node, not just here.
+        const bool ready = wallNode ? wallNode->stepResident() : !session->terrain().frameInfo().holdingSequence;
+        double t = clock.advance(dt, ready).time;
         auto vp = session->viewpointAt(t, "");
         // Interactive control (when the scenario allows it): the first navigation key takes the
         // camera off its path from where it is; h / Home gives it back.
@@ -188,32 +209,56 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             }
         }
         input.clearRequests();
+        if (wallNode) {  // followers draw the leader's frame; nothing new: not a frame
+            if (!wallNode->beginFrame(*session, t, vp ? *vp : session->terrain().overviewViewpoint(), clock, 0.1)) {
+                if (wallNode->stopped()) break;
+                --frame;
+                continue;
+            }
+            t = wallNode->dataTime();
+            vp = wallNode->viewpoint();
+            session->setOverlayLayout(wallNode->screen().overlayLayout());
+            session->terrain().setStepGate(wallNode->stepTime());
+        }
         const int w = dpy.width(), h = dpy.height();
-        const math::Camera cam = vp ? makeCamera(*vp, session->terrain().bounds(), w, h,
-                                                 session->scenario().camera.fovY)
-                                    : makeCamera(session->terrain().overviewViewpoint(),
-                                                 session->terrain().bounds(), w, h, 45.0);
+        math::Camera cam = vp ? makeCamera(*vp, session->terrain().bounds(), w, h,
+                                           session->scenario().camera.fovY)
+                              : makeCamera(session->terrain().overviewViewpoint(),
+                                           session->terrain().bounds(), w, h, 45.0);
+        if (wallNode && vp) cam = wallNode->screen().camera(*vp, session->terrain().bounds(), session->scenario().camera.fovY);
         if (offscreen)
             offscreen->bind();
         else
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        session->setPlayback(scene::playbackOf(clock));
+        session->setPlayback(wallNode ? wallNode->playback() : scene::playbackOf(clock));
         session->drawFrame(cam, t, w, h);
         // Camera paths are known in advance: ask for the tiles of the view two seconds ahead.
-        if (auto ahead = session->viewpointAt(clock.predict(kPrefetchSeconds), ""))
+        if (wallNode) {  // from the leader's playback state, through this screen's frustum
+            const scene::Playback p = wallNode->playback();
+            if (auto ahead = session->viewpointAt(t + (p.paused ? 0.0 : p.rate * kPrefetchSeconds), ""))
+                session->terrain().prefetch(wallNode->screen().camera(*ahead, session->terrain().bounds(),
+                                                                      session->scenario().camera.fovY));
+        } else if (auto ahead = session->viewpointAt(clock.predict(kPrefetchSeconds), ""))
             session->terrain().prefetch(makeCamera(*ahead, session->terrain().bounds(), w, h,
                                                    session->scenario().camera.fovY));
+        // Swap barrier: every node swaps this frame together (or the leader's deadline passes).
+        if (wallNode && !wallNode->barrier(*session, [&] { session->drawFrame(cam, t, w, h); })) {
+            --frame;  // the leader moved on or went silent: keep the last frame on screen
+            continue;
+        }
         if (!dpy.swapBuffers()) {
             KIOSK_LOG_ERROR(kTag, "presenting the frame failed; stopping");
             return kExitCannotRun;
         }
         if (offscreen) glFinish();
+        if (wallNode) wallNode->swapped(session->terrain().frameInfo());
         if (maxFps > 0) {
             const double spent = wall.now() - now;
             const double wait = 1.0 / maxFps - spent;
             if (wait > 0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
         }
     }
+    if (wallNode) wallNode->stop();
     KIOSK_LOG_INFO(kTag, "stopped cleanly");
     return kExitOk;
 }

@@ -12,6 +12,7 @@
 #include "runtime/app/FrameStats.h"
 #include "runtime/app/ImageOutput.h"
 #include "runtime/app/Session.h"
+#include "runtime/app/WallScreen.h"
 #include "runtime/core/Clock.h"
 #include "runtime/core/ExitCode.h"
 #include "runtime/core/Log.h"
@@ -31,7 +32,7 @@ constexpr double kSettleTimeoutSeconds = 120.0;
 int usage(const std::string& message) {
     std::fprintf(stderr, "geokiosk render: %s\nusage: geokiosk render SCENARIO --out OUT [--time T | "
                          "--from T0 --to T1 --fps N] [--size WxH] [--viewpoint NAME] "
-                         "[--stats STATS.json]\n",
+                         "[--stats STATS.json] [--wall WALL.json --screen ID]\n",
                  message.c_str());
     return kExitUsage;
 }
@@ -39,7 +40,7 @@ int usage(const std::string& message) {
 }  // namespace
 
 int runRenderCommand(const std::vector<std::string>& argv) {
-    Args args("render", {"out", "time", "from", "to", "fps", "size", "viewpoint", "stats"}, {});
+    Args args("render", {"out", "time", "from", "to", "fps", "size", "viewpoint", "stats", "wall", "screen"}, {});
     if (!args.parse(argv)) return usage(args.error());
     if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
     const std::filesystem::path scenarioPath = args.positionals()[0];
@@ -61,6 +62,15 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         if (!wh) return usage("--size wants WIDTHxHEIGHT, got '" + *size + "'");
         width = wh->first;
         height = wh->second;
+    }
+    // A wall's screen: its size and its off-axis part of the virtual camera (docs/wall.md).
+    int wallExit = -1;
+    const std::optional<WallScreen> wallScreen = wallScreenFromArgs(args, wallExit);
+    if (wallExit >= 0) return wallExit;
+    if (wallScreen) {
+        if (args.value("size")) return usage("with --wall the screen's size comes from the wall file; drop --size");
+        width = wallScreen->width();
+        height = wallScreen->height();
     }
     double fps = 1.0;
     if (auto f = args.value("fps")) {
@@ -107,6 +117,7 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         return kExitCannotRun;
     }
     Session& s = **session;
+    if (wallScreen) s.setOverlayLayout(wallScreen->overlayLayout());
     std::vector<double> times;
     if (range) {
         const double t0 = from->resolve(s.startTime()), t1 = to->resolve(s.startTime());
@@ -138,8 +149,9 @@ int runRenderCommand(const std::vector<std::string>& argv) {
             printDiagnostics(vp.diagnostics);
             return kExitBadInput;
         }
-        const math::Camera cam = makeCamera(*vp, s.terrain().bounds(), width, height,
-                                            s.scenario().camera.fovY);
+        const math::Camera cam = wallScreen ? wallScreen->camera(*vp, s.terrain().bounds(), s.scenario().camera.fovY)
+                                            : makeCamera(*vp, s.terrain().bounds(), width, height,
+                                                         s.scenario().camera.fovY);
         target->bind();
         // Deterministic output: redraw until every tile of this view (and both frames of each
         // sequence pair) is resident, then keep that last, complete frame.

@@ -174,7 +174,7 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     mScene->draw(camera, style);
     const double drawMs = msSince(tDraw);
     const auto tOverlay = PhaseClock::now();
-    drawOverlays(time, width, height);
+    mOverlayLayout ? drawWallOverlays(time, width, height) : drawOverlays(time, width, height);
     const double overlayMs = msSince(tOverlay);
 
     const auto& f = mScene->frameInfo();
@@ -217,7 +217,7 @@ anim::ClockSettings Session::clockSettings() const {
 
 void Session::drawOverlays(double time, int width, int height) {
     // Text scales with the output: legible on a wall at 4K, not covering a 320-pixel preview.
-    const int fontPx = std::clamp(height / 40, 10, 40);
+    const int fontPx = std::clamp((mOverlayFontHeight > 0 ? mOverlayFontHeight : height) / 40, 10, 40);
     if (fontPx != mOverlayFontPx) {
         mOverlayFontPx = fontPx;
         mOverlay.reset();
@@ -236,7 +236,7 @@ void Session::drawOverlays(double time, int width, int height) {
     // previews, long titles), the title moves below it rather than being overdrawn.
     std::string label;
     float labelW = 0.0f;
-    if (sc.overlays.timeLabel.enabled && mEnd > mStart) {
+    if ((mOverlayOnly & kOverlayTimeLabel) && sc.overlays.timeLabel.enabled && mEnd > mStart) {
         char buf[128];
         anim::formatTimeLabel(buf, sizeof buf, time, mStart, sc.overlays.timeLabel.format, mZone);
         label = buf;
@@ -245,7 +245,7 @@ void Session::drawOverlays(double time, int width, int height) {
             label += "  (" + anim::formatElapsed(time - mStart) + ")";
         labelW = o.measure(label) + 24.0f;
     }
-    if (!sc.title.empty() || !sc.caption.empty()) {
+    if ((mOverlayOnly & kOverlayTitle) && (!sc.title.empty() || !sc.caption.empty())) {
         const float w = std::max(o.measure(sc.title), o.measure(sc.caption)) + 24.0f;
         const float h = (sc.caption.empty() ? 1.0f : 2.0f) * line + 16.0f;
         const bool stacked = labelW > 0.0f && 12 + w + 12 + labelW + 12 > float(width);
@@ -263,8 +263,12 @@ void Session::drawOverlays(double time, int width, int height) {
             o.rect(12, float(height) - 10, (float(width) - 24) * frac, 4, kText);
         }
     }
-    if (sc.overlays.legend.enabled) drawLegend(sc.overlays.legend, width, height);
+    if ((mOverlayOnly & kOverlayLegend) && sc.overlays.legend.enabled) drawLegend(sc.overlays.legend, width, height);
     // Layer problems are always shown: an operator must see why a layer is missing.
+    if (!(mOverlayOnly & kOverlayStatus)) {  // a wall box of one overlay only
+        o.end();
+        return;
+    }
     float y = float(height) - 24;
     if (!mNotice.empty()) {
         const std::string text = mNotice.size() > 160 ? mNotice.substr(0, 157) + "..." : mNotice;

@@ -57,6 +57,20 @@ public:
     /** @brief How the clock plays (rate, range, seeks): sizes the sequences' prefetch. */
     void setPlayback(const scene::Playback& playback) { mPlayback = playback; }
 
+    /**
+     * @brief Display walls (runtime/app/WallScreen): which of the legend, time label and title
+     * this output draws, each laid out in its own box (pixels, top-left origin; w == 0: the
+     * whole output), so no overlay straddles a bezel. nullopt: all, over the whole output.
+     */
+    struct OverlayBox {
+        bool shown = true;
+        int x = 0, y = 0, w = 0, h = 0;
+    };
+    struct OverlayLayout {
+        OverlayBox legend, timeLabel, title;
+    };
+    void setOverlayLayout(std::optional<OverlayLayout> layout) { mOverlayLayout = layout; }
+
     /** @brief Update tiles for the view and draw terrain + overlays into the bound framebuffer. */
     FrameRecord drawFrame(const math::Camera& camera, double time, int width, int height);
 
@@ -64,12 +78,21 @@ private:
     Session() = default;
     void drawOverlays(double time, int width, int height);
     void drawLegend(const config::LegendOverlay& legend, int width, int height);
+    /** @brief drawOverlays() once per wall overlay box (SessionWall.cpp). */
+    void drawWallOverlays(double time, int width, int height);
 
     std::unique_ptr<config::Scenario> mScenario;
     std::unique_ptr<scene::TerrainScene> mScene;
     std::optional<render::OverlayRenderer> mOverlay;
     int mOverlayFontPx = 0;
     std::string mNotice;
+    std::optional<OverlayLayout> mOverlayLayout;
+    /** @brief Which overlays drawOverlays() draws (bits below) and the output height its font
+     * follows (0: the height it is given); set per box by drawWallOverlays(). */
+    unsigned mOverlayOnly = ~0u;
+    int mOverlayFontHeight = 0;
+    static constexpr unsigned kOverlayLegend = 1, kOverlayTimeLabel = 2, kOverlayTitle = 4,
+                              kOverlayStatus = 8;
     anim::CameraPath mPath;
     anim::TimeZone mZone;
     double mStart = 0, mEnd = 0;
