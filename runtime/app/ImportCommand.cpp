@@ -7,6 +7,7 @@
 #include "runtime/import/Importer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -16,13 +17,16 @@ namespace kiosk::app {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: geokiosk import elevation SRC --store STORE [--name NAME] [--crs EPSG:N]\n"
+    "usage: geokiosk import elevation SRC --store STORE [--name NAME] [--band N]\n"
     "                       [--pixel-size M] [--z-scale F] [--units m|ft] [--fill-voids]\n"
     "       geokiosk import imagery SRC --store STORE --name NAME [--jpeg]\n"
     "       geokiosk import sequence SRC... --store STORE --name NAME [--times TIMES.csv]\n"
     "                       [--variable VAR] [--start TIME] [--step SECONDS] [--like RASTER]\n"
     "                       [--wet-threshold M] [--categorical] [--units U]\n"
-    "common: [--quiet] [--threads N]\n";
+    "common: [--assign-crs CRS] [--to-crs CRS] [--max-memory MB] [--quiet] [--threads N]\n"
+    "  --assign-crs names the source's CRS (EPSG:N, WKT or PROJ), --to-crs the new store's\n"
+    "  (default: the source's; UTM of the centre, or a global projection for wide geographic\n"
+    "  grids); --crs is the deprecated mix of both\n";
 
 int usage(const std::string& message, const std::string& hint = {}) {
     Diagnostic d;
@@ -58,9 +62,9 @@ int runImportCommand(const std::vector<std::string>& args) {
     import::ImportOptions o;
     std::vector<std::string> sources;
     const std::vector<std::string> valued = {
-        "--store", "--name",  "--crs",      "--pixel-size",    "--z-scale",
-        "--units", "--times", "--variable", "--wet-threshold", "--start",
-        "--step",  "--like",  "--threads"};
+        "--store",   "--name",       "--crs",           "--pixel-size", "--z-scale",   "--units",
+        "--times",   "--variable",   "--wet-threshold", "--start",      "--step",      "--like",
+        "--threads", "--assign-crs", "--to-crs",        "--band",       "--max-memory"};
     const std::vector<std::string> flags = {"--categorical", "--jpeg", "--quiet", "--fill-voids"};
     for (std::size_t i = 1; i < args.size(); ++i) {
         const std::string& a = args[i];
@@ -97,7 +101,15 @@ int runImportCommand(const std::vector<std::string>& args) {
         } else if (a == "--name") {
             o.name = v;
         } else if (a == "--crs") {
+            std::fputs(
+                "geokiosk: warning: --crs is deprecated: use --assign-crs CRS (the source's "
+                "own CRS) or --to-crs CRS (the store's)\n",
+                stderr);
             o.crs = v;
+        } else if (a == "--assign-crs") {
+            o.assignCrs = v;
+        } else if (a == "--to-crs") {
+            o.toCrs = v;
         } else if (a == "--units") {
             o.units = v;
         } else if (a == "--times") {
@@ -128,6 +140,15 @@ int runImportCommand(const std::vector<std::string>& args) {
                 o.step = *n;
             } else if (a == "--threads") {
                 o.threads = std::max(1, int(*n));
+            } else if (a == "--band") {
+                if (!(*n >= 1) || *n != std::floor(*n) || *n > 65535)
+                    return usage("--band needs a band number from 1, got '" + v + "'");
+                o.band = int(*n);
+            } else if (a == "--max-memory") {
+                if (!(*n >= 64) || *n > 1048576)
+                    return usage("--max-memory needs megabytes from 64 to 1048576, got '" + v +
+                                 "'");
+                o.memoryBudget = std::int64_t(*n) << 20;
             }
         }
     }
@@ -138,6 +159,9 @@ int runImportCommand(const std::vector<std::string>& args) {
     if (kind == "elevation" && o.units && *o.units != "m" && *o.units != "ft")
         return usage("--units must be m or ft for elevation, got '" + *o.units + "'");
     if (kind != "elevation" && o.name.empty()) return usage("import " + kind + " needs --name");
+    if (kind != "elevation" && o.band) return usage("--band applies to import elevation only");
+    if (o.crs && (o.assignCrs || o.toCrs))
+        return usage("--crs cannot be combined with --assign-crs / --to-crs");
 
     Diagnostics d;
     if (kind == "elevation")

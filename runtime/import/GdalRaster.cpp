@@ -1,5 +1,7 @@
 #include "runtime/import/GdalRaster.h"
 
+#include "runtime/import/GeoTarget.h"
+
 #include <cpl_conv.h>
 #include <cpl_error.h>
 #include <cpl_string.h>
@@ -45,12 +47,21 @@ Srs srsFromWkt(const std::string& wkt) {
     return s;
 }
 
+}  // namespace
+
 bool sameCrs(const std::string& a, const std::string& b) {
     if (a == b) return true;
     Srs sa = srsFromWkt(a), sb = srsFromWkt(b);
     if (!sa || !sb) return false;
     return OSRIsSame(OGRSpatialReferenceH(sa.get()), OGRSpatialReferenceH(sb.get())) != 0;
 }
+
+bool isGeographicCrs(const std::string& wkt) {
+    Srs s = srsFromWkt(wkt);
+    return s && OSRIsGeographic(OGRSpatialReferenceH(s.get()));
+}
+
+namespace {
 
 // A VRT copy of `src` we may re-georeference without touching the file.
 GdalDataset vrtCopy(GDALDatasetH src) {
@@ -74,6 +85,19 @@ Result<GdalDataset> warpToVrt(GDALDatasetH src, const std::vector<std::string>& 
         return d;
     }
     return GdalDataset(out);
+}
+
+// GDAL's suggested output size of warping `ds` into `dstWkt` (what gdalwarp would create).
+bool suggestedWarpSize(GDALDatasetH ds, const std::string& dstWkt, int& nx, int& ny) {
+    CPLStringList topts;
+    topts.SetNameValue("DST_SRS", dstWkt.c_str());
+    void* tr = GDALCreateGenImgProjTransformer2(ds, nullptr, topts.List());
+    if (!tr) return false;
+    double ogt[6], ext[4];
+    const bool ok =
+        GDALSuggestedWarpOutput2(ds, GDALGenImgProjTransform, tr, ogt, &nx, &ny, ext, 0) == CE_None;
+    GDALDestroyGenImgProjTransformer(tr);
+    return ok && nx > 0 && ny > 0;
 }
 
 std::string fmt(double v) {
@@ -130,12 +154,12 @@ StoreCrs localCrs() {
     return c;
 }
 
-Result<StoreCrs> crsFromUser(const std::string& text) {
+Result<StoreCrs> crsFromUser(const std::string& text, const std::string& option) {
     initGdal();
     Srs s(OSRNewSpatialReference(nullptr));
     if (OSRSetFromUserInput(OGRSpatialReferenceH(s.get()), text.c_str()) != OGRERR_NONE) {
         Diagnostics d;
-        d.error("IMPORT_BAD_CRS", "", "--crs", "unknown CRS '" + text + "'");
+        d.error("IMPORT_BAD_CRS", "", option, "unknown CRS '" + text + "'");
         return d;
     }
     return describe(OGRSpatialReferenceH(s.get()));
@@ -197,78 +221,33 @@ GdalDataset memRaster(const std::vector<float>& values, int width, int height,
     return GdalDataset(ds);
 }
 
-namespace {
-
-// Georeference check shared by both planners: returns a dataset (owned by `chain`) that has a
-// geotransform and, when one is known, a CRS; or an error naming the file.
-Result<GDALDatasetH> georeferenced(GdalDataset source, const PlaceOptions& opt,
-                                   std::optional<StoreCrs>& crs, DatasetChain& chain) {
-    Diagnostics d;
-    double gt[6];
-    GDALDatasetH src = chain.add(std::move(source));
-    const bool hasGt = GDALGetGeoTransform(src, gt) == CE_None &&
-                       !(gt[0] == 0 && gt[1] == 1 && gt[3] == 0 && gt[5] == 1);
-    crs = crsOfDataset(src);
-    std::optional<StoreCrs> userCrs;
-    if (opt.crs) {
-        auto c = crsFromUser(*opt.crs);
-        if (!c) return c.diagnostics;
-        userCrs = *c;
-    }
-    if (hasGt && (crs || !userCrs)) return src;
-    if (!hasGt && !opt.pixelSize) {
-        d.error("IMPORT_NO_GEOREF", opt.sourceName, "",
-                "source has no georeferencing (give --pixel-size M, and --crs if known)");
-        return d;
-    }
-    GDALDatasetH copy = chain.add(vrtCopy(src));
-    if (!copy) {
-        d.error("IMPORT_UNREADABLE", opt.sourceName, "", gdalError("cannot wrap the source"));
-        return d;
-    }
-    if (!hasGt) {
-        const double p = *opt.pixelSize;
-        const double h = GDALGetRasterYSize(copy);
-        double g[6] = {0, p, 0, h * p, 0, -p};
-        GDALSetGeoTransform(copy, g);
-    }
-    if (!crs && userCrs) {
-        GDALSetProjection(copy, userCrs->wkt.c_str());
-        crs = crsOfDataset(copy);
-        if (crs) crs->srsId = userCrs->srsId;
-    }
-    return copy;
-}
-
-}  // namespace
-
-Result<PlannedSource> planGrid(GdalDataset source, const PlaceOptions& opt, int tileSize) {
+Result<PlannedSource> planGrid(GdalDataset source, const PlaceOptions& options, int tileSize) {
     Diagnostics d;
     PlannedSource out;
+    PlaceOptions opt = options;
     std::optional<StoreCrs> srcCrs;
-    auto geo = georeferenced(std::move(source), opt, srcCrs, out.placed.chain);
+    auto geo = georeference(std::move(source), opt, srcCrs, out.placed.chain);
     if (!geo) return geo.diagnostics;
     GDALDatasetH ds = *geo;
 
     StoreCrs target;
     bool warp = false;
-    if (opt.crs) {
-        auto c = crsFromUser(*opt.crs);
+    if (opt.toCrs) {
+        auto c = crsFromUser(*opt.toCrs, "--to-crs");
         if (!c) return c.diagnostics;
-        target = *c;
-        warp = srcCrs && !sameCrs(srcCrs->wkt, target.wkt);
-    } else if (srcCrs) {
-        OGRSpatialReferenceH s = GDALGetSpatialRef(ds);
-        if (s && OSRIsGeographic(s)) {
-            double gt[6];
-            GDALGetGeoTransform(ds, gt);
-            const double lon = gt[0] + gt[1] * GDALGetRasterXSize(ds) / 2.0;
-            const double lat = gt[3] + gt[5] * GDALGetRasterYSize(ds) / 2.0;
-            target = utmCrsFor(lon, lat);
-            warp = true;
-        } else {
-            target = *srcCrs;
+        if (!srcCrs) {
+            d.error("IMPORT_BAD_CRS", opt.sourceName, "--to-crs",
+                    "the source has no CRS to reproject from")
+                .hint = "name it with --assign-crs";
+            return d;
         }
+        target = *c;
+        warp = !sameCrs(srcCrs->wkt, target.wkt);
+    } else if (srcCrs && isGeographicCrs(srcCrs->wkt)) {
+        target = autoTargetCrs(lonLatExtent(ds));
+        warp = true;
+    } else if (srcCrs) {
+        target = *srcCrs;
     } else {
         target = localCrs();
     }
@@ -284,11 +263,27 @@ Result<PlannedSource> planGrid(GdalDataset source, const PlaceOptions& opt, int 
             args.insert(args.end(), {"-ot", "Float32", "-dstnodata", "nan"});
         else
             args.insert(args.end(), {"-dstalpha"});
-        if (warp) args.insert(args.end(), {"-t_srs", target.wkt});
-        if (!square) {
+        // Pre-flight: the output size, before any VRT (or buffer) of that size exists.
+        std::int64_t outW = 0, outH = 0;
+        if (warp) {
+            // GDAL suggests a square pixel in the *target* CRS (same pixel count along the
+            // diagonal); a source pixel size in degrees must never be used with a metre CRS.
+            args.insert(args.end(), {"-t_srs", target.wkt});
+            int nx = 0, ny = 0;
+            if (!suggestedWarpSize(ds, target.wkt, nx, ny)) {
+                d.error("IMPORT_WARP", opt.sourceName, "",
+                        gdalError("cannot transform the source into " + target.name));
+                return d;
+            }
+            outW = nx, outH = ny;
+        } else {
             const double p = std::min(std::fabs(gt[1]), std::fabs(gt[5]));
             args.insert(args.end(), {"-tr", fmt(p), fmt(p)});
+            outW = std::int64_t(std::ceil(std::fabs(gt[1]) * GDALGetRasterXSize(ds) / p));
+            outH = std::int64_t(std::ceil(std::fabs(gt[5]) * GDALGetRasterYSize(ds) / p));
         }
+        d = checkImportBudget(outW, outH, tileSize, 0, opt.memoryBudget, opt.sourceName);
+        if (d.hasErrors()) return d;
         auto w = warpToVrt(ds, args, opt.sourceName);
         if (!w) return w.diagnostics;
         placed = out.placed.chain.add(std::move(*w));
@@ -300,6 +295,8 @@ Result<PlannedSource> planGrid(GdalDataset source, const PlaceOptions& opt, int 
         d.error("IMPORT_NO_GEOREF", opt.sourceName, "", "source has an invalid geotransform");
         return d;
     }
+    d = checkImportBudget(width, height, tileSize, 0, opt.memoryBudget, opt.sourceName);
+    if (d.hasErrors()) return d;
     int levels = 1;
     while (std::int64_t(tileSize) << (levels - 1) < std::max(width, height)) ++levels;
     io::TileGrid& g = out.grid;
@@ -318,16 +315,35 @@ Result<PlannedSource> planGrid(GdalDataset source, const PlaceOptions& opt, int 
 }
 
 Result<PlacedSource> placeOnGrid(GdalDataset source, const io::TileGrid& grid,
-                                 const PlaceOptions& opt) {
+                                 const PlaceOptions& options) {
     Diagnostics d;
     std::optional<StoreCrs> srcCrs;
-    PlaceOptions o = opt;
-    const bool noCrs = !GDALGetSpatialRef(raw(source));
-    if (!o.crs && noCrs) o.crs = grid.crsWkt;
+    PlaceOptions opt = options;
     PlacedSource ps;
-    auto geo = georeferenced(std::move(source), o, srcCrs, ps.chain);
+    auto geo = georeference(std::move(source), opt, srcCrs, ps.chain);
     if (!geo) return geo.diagnostics;
     GDALDatasetH src = *geo;
+    if (opt.toCrs) {
+        auto c = crsFromUser(*opt.toCrs, "--to-crs");
+        if (!c) return c.diagnostics;
+        if (!sameCrs(c->wkt, grid.crsWkt)) {
+            d.error("IMPORT_CRS_MISMATCH", opt.sourceName, "--to-crs",
+                    "the store's CRS is " + grid.crsName + "; --to-crs applies to a new store")
+                .hint = "drop --to-crs: the source is warped to the store's CRS";
+            return d;
+        }
+    }
+    const bool noCrs = !srcCrs;
+    if (noCrs) {
+        // A CRS-less source on a store: its coordinates are taken to be the store's.
+        src = ps.chain.add(vrtCopy(src));
+        if (!src) {
+            d.error("IMPORT_UNREADABLE", opt.sourceName, "", gdalError("cannot wrap the source"));
+            return d;
+        }
+        GDALSetProjection(src, grid.crsWkt.c_str());
+        srcCrs = crsOfDataset(src);
+    }
     const io::TileMatrix& finest = grid.levels.back();
     const double p = finest.pixelXSize;
     const std::int64_t full = std::int64_t(finest.tileWidth) * finest.matrixWidth;
@@ -335,7 +351,7 @@ Result<PlacedSource> placeOnGrid(GdalDataset source, const io::TileGrid& grid,
     GDALGetGeoTransform(src, gt);
     const int sw = GDALGetRasterXSize(src), sh = GDALGetRasterYSize(src);
     const bool same = !srcCrs || sameCrs(srcCrs->wkt, grid.crsWkt);
-    if (noCrs && !opt.crs)
+    if (noCrs)
         ps.warnings.push_back("source has no CRS; assuming the store's (" + grid.crsName + ")");
 
     double minX, minY, maxX, maxY;
@@ -377,6 +393,9 @@ Result<PlacedSource> placeOnGrid(GdalDataset source, const io::TileGrid& grid,
         return d;
     }
     ps.window = w;
+    d = checkImportBudget(w.width(), w.height(), finest.tileWidth, 0, opt.memoryBudget,
+                          opt.sourceName);
+    if (d.hasErrors()) return d;
     const double ox = (gt[0] - grid.minX) / p, oy = (grid.maxY - gt[3]) / p;
     const bool aligned = same && gt[2] == 0 && gt[4] == 0 && std::fabs(gt[1] - p) <= 1e-9 * p &&
                          std::fabs(gt[5] + p) <= 1e-9 * p &&

@@ -7,6 +7,7 @@
 #include <gdal.h>
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -47,7 +48,11 @@ struct StoreCrs {
 /** @brief A local engineering CRS in metres for inputs without one. */
 StoreCrs localCrs();
 /** @brief Describe a user CRS string (EPSG:N, WKT, PROJ); IMPORT_BAD_CRS on failure. */
-Result<StoreCrs> crsFromUser(const std::string& text);
+Result<StoreCrs> crsFromUser(const std::string& text, const std::string& option = "--crs");
+/** @brief Same CRS (OSRIsSame), for WKT/PROJ/EPSG texts. */
+bool sameCrs(const std::string& a, const std::string& b);
+/** @brief True for a geographic (longitude/latitude) CRS. */
+bool isGeographicCrs(const std::string& wkt);
 /** @brief Describe a dataset's CRS; nullopt if it has none. */
 std::optional<StoreCrs> crsOfDataset(GDALDatasetH ds);
 /** @brief UTM zone CRS (WGS 84) containing lon/lat. */
@@ -55,10 +60,13 @@ StoreCrs utmCrsFor(double lon, double lat);
 
 /** @brief Options that shape how a source is placed on a grid. */
 struct PlaceOptions {
-    std::optional<std::string> crs;   ///< --crs
-    std::optional<double> pixelSize;  ///< --pixel-size for sources without georeferencing
-    bool nearest = false;             ///< categorical data: nearest-neighbour resampling
-    bool imagery = false;             ///< keep bytes and add an alpha band
+    std::optional<std::string> crs;        ///< --crs (deprecated): assign if CRS-less, else target
+    std::optional<std::string> assignCrs;  ///< --assign-crs: the source's CRS (overrides its own)
+    std::optional<std::string> toCrs;      ///< --to-crs: the new store's CRS
+    std::optional<double> pixelSize;       ///< --pixel-size for sources without georeferencing
+    std::int64_t memoryBudget = std::int64_t(2) << 30;  ///< --max-memory, bytes
+    bool nearest = false;  ///< categorical data: nearest-neighbour resampling
+    bool imagery = false;  ///< keep bytes and add an alpha band
     std::string sourceName;
 };
 
@@ -98,8 +106,10 @@ struct PlacedSource {
 };
 
 /**
- * @brief Plan a new store grid from a source: geographic sources go to their UTM zone (or
- * `opt.crs`); the finest level has the source's (or warped) pixel size; level 0 is one tile.
+ * @brief Plan a new store grid from a source: geographic sources (including CRS-less CF lon/lat
+ * grids) go to autoTargetCrs (GeoTarget.h) unless `opt.toCrs` names one; the finest level has the
+ * source's pixel size, or, when warped, GDAL's suggested square pixel size computed in the target
+ * CRS; level 0 is one tile. IMPORT_TOO_LARGE when the pre-flight estimate exceeds the budget.
  */
 struct PlannedSource {
     io::TileGrid grid;

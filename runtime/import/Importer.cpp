@@ -3,6 +3,7 @@
 #include "runtime/core/TimeParse.h"
 #include "runtime/import/CfTime.h"
 #include "runtime/import/GdalRaster.h"
+#include "runtime/import/GeoTarget.h"
 #include "runtime/import/Progress.h"
 #include "runtime/import/Pyramid.h"
 #include "runtime/import/SwwMesh.h"
@@ -34,9 +35,10 @@ std::string lowerExt(const std::string& path) {
 }
 
 // Vertical units: what the source declares against what the user declares.
-Result<double> unitFactor(GDALDatasetH ds, const ImportOptions& o, const std::string& src) {
+Result<double> unitFactor(GDALDatasetH ds, int band, const ImportOptions& o,
+                          const std::string& src) {
     Diagnostics d;
-    std::string declared = GDALGetRasterUnitType(GDALGetRasterBand(ds, 1));
+    std::string declared = GDALGetRasterUnitType(GDALGetRasterBand(ds, band));
     for (char& c : declared) c = char(std::tolower(static_cast<unsigned char>(c)));
     auto isFeet = [](const std::string& u) {
         return u == "ft" || u == "foot" || u == "feet" || u == "us survey foot" ||
@@ -83,7 +85,7 @@ Result<PlacedSource> placeSource(io::StoreWriter& w, GdalDataset src, const Plac
         if (!GDALGetSpatialRef(planned->placed.ds))
             warnings.warning("IMPORT_LOCAL_CRS", po.sourceName, "",
                              "source has no CRS; the store uses a local metric CRS "
-                             "(give --crs EPSG:N if it is known)");
+                             "(give --assign-crs EPSG:N if it is known)");
         return std::move(planned->placed);
     }
     auto ps = placeOnGrid(std::move(src), *w.grid(), po);
@@ -92,6 +94,48 @@ Result<PlacedSource> placeSource(io::StoreWriter& w, GdalDataset src, const Plac
         for (const auto& m : ps->warnings)
             warnings.warning("IMPORT_ASSUMED_CRS", po.sourceName, "", m);
     return ps;
+}
+
+PlaceOptions placeOptions(const ImportOptions& o, const std::string& source) {
+    PlaceOptions po;
+    po.crs = o.crs;
+    po.assignCrs = o.assignCrs;
+    po.toCrs = o.toCrs;
+    po.pixelSize = o.pixelSize;
+    po.memoryBudget = o.memoryBudget;
+    po.sourceName = source;
+    return po;
+}
+
+// Elevation reads one band: a colour (or any multi-band) raster needs --band, never band 1
+// silently.
+Result<int> elevationBand(GDALDatasetH ds, const ImportOptions& o, const std::string& source) {
+    Diagnostics d;
+    const int n = GDALGetRasterCount(ds);
+    if (o.band) {
+        if (*o.band < 1 || *o.band > n) {
+            d.error("IMPORT_USAGE", source, "--band",
+                    "band " + std::to_string(*o.band) + " does not exist (the source has " +
+                        std::to_string(n) + ")");
+            return d;
+        }
+        return *o.band;
+    }
+    if (n == 1) return 1;
+    std::string kinds;
+    for (int b = 1; b <= n && b <= 4; ++b) {
+        if (!kinds.empty()) kinds += ", ";
+        kinds += GDALGetColorInterpretationName(
+            GDALGetRasterColorInterpretation(GDALGetRasterBand(ds, b)));
+    }
+    const bool colour = GDALGetRasterColorInterpretation(GDALGetRasterBand(ds, 1)) == GCI_RedBand;
+    d.error("IMPORT_MULTIBAND", source, "",
+            std::string(colour ? "a colour raster" : "a multi-band raster") + " (" +
+                std::to_string(n) + " bands: " + kinds + (n > 4 ? ", ..." : "") +
+                ") is not an elevation model")
+        .hint = colour ? "import it with 'import imagery', or pick a band with --band N"
+                       : "pick the elevation band with --band N";
+    return d;
 }
 
 struct ScalarImport {
@@ -149,11 +193,22 @@ static Diagnostics importElevationImpl(const std::string& source, const ImportOp
     if (lowerExt(source) == ".sww") return importSwwElevation(source, o);
     auto src = openRaster(source);
     if (!src) return src.diagnostics;
+    auto bandNo = elevationBand(raw(*src), o, source);
+    if (!bandNo) return bandNo.diagnostics;
+    const int band = *bandNo;
     if (o.fillVoids) {
+        // The copy holds every band of the raster in memory: part of the pre-flight estimate.
+        const std::int64_t w = GDALGetRasterXSize(raw(*src)), h = GDALGetRasterYSize(raw(*src));
+        const std::int64_t held =
+            w * h * GDALGetRasterCount(raw(*src)) *
+            GDALGetDataTypeSizeBytes(GDALGetRasterDataType(GDALGetRasterBand(raw(*src), band)));
+        Diagnostics b = checkImportBudget(w, h, o.tileSize, held, o.memoryBudget, source);
+        if (b.hasErrors()) return b;
         // Voids read as holes in the terrain; a kiosk should show a plausible surface instead.
         GDALDriverH mem = GDALGetDriverByName("MEM");
-        GDALDatasetH copy = mem ? GDALCreateCopy(mem, "", raw(*src), FALSE, nullptr, nullptr, nullptr) : nullptr;
-        if (!copy || GDALFillNodata(GDALGetRasterBand(copy, 1), nullptr, 100.0, 0, 0, nullptr,
+        GDALDatasetH copy =
+            mem ? GDALCreateCopy(mem, "", raw(*src), FALSE, nullptr, nullptr, nullptr) : nullptr;
+        if (!copy || GDALFillNodata(GDALGetRasterBand(copy, band), nullptr, 100.0, 0, 0, nullptr,
                                     nullptr, nullptr) != CE_None) {
             if (copy) GDALClose(copy);
             Diagnostics d;
@@ -162,14 +217,14 @@ static Diagnostics importElevationImpl(const std::string& source, const ImportOp
         }
         *src = GdalDataset(copy);
     }
-    auto factor = unitFactor(raw(*src), o, source);
+    auto factor = unitFactor(raw(*src), band, o, source);
     if (!factor) return factor.diagnostics;
     const double f = *factor * o.zScale;
     std::optional<double> nodata;
     int hasNodata = 0;
-    const double nd = GDALGetRasterNoDataValue(GDALGetRasterBand(raw(*src), 1), &hasNodata);
+    const double nd = GDALGetRasterNoDataValue(GDALGetRasterBand(raw(*src), band), &hasNodata);
     if (hasNodata) nodata = nd;
-    auto range = bandRange(raw(*src), 1);
+    auto range = bandRange(raw(*src), band);
     if (!range) {
         Diagnostics d;
         d.error("IMPORT_ALL_NODATA", source, "", "source holds no valid value (all nodata)");
@@ -180,17 +235,14 @@ static Diagnostics importElevationImpl(const std::string& source, const ImportOp
     Diagnostics warnings;
     Progress progress(o.quiet);
     Diagnostics d = withTempStore(o.store, [&](io::StoreWriter& w) -> Diagnostics {
-        PlaceOptions po;
-        po.crs = o.crs;
-        po.pixelSize = o.pixelSize;
-        po.sourceName = source;
+        PlaceOptions po = placeOptions(o, source);
         auto ps = placeSource(w, std::move(*src), po, o.tileSize, warnings);
         if (!ps) return ps.diagnostics;
         ScalarImport si;
         si.table = o.name.empty() ? "elevation" : o.name;
         si.units = "m";
         si.nodata = nodata;
-        auto r = importScalarLayer(w, *ps, scalarRows(*ps, 1, f, source), range, si, o, source,
+        auto r = importScalarLayer(w, *ps, scalarRows(*ps, band, f, source), range, si, o, source,
                                    progress);
         return r.diagnostics;
     });
@@ -237,11 +289,8 @@ static Diagnostics importImageryImpl(const std::string& source, const ImportOpti
                     "store's grid)");
             return e;
         }
-        PlaceOptions po;
-        po.crs = o.crs;
-        po.pixelSize = o.pixelSize;
+        PlaceOptions po = placeOptions(o, source);
         po.imagery = true;
-        po.sourceName = source;
         auto ps = placeSource(w, std::move(*src), po, o.tileSize, warnings);
         if (!ps) return ps.diagnostics;
         e.append(
@@ -560,8 +609,13 @@ Result<GridWindow> swwGridWindow(io::StoreWriter& w, const SwwMesh& mesh, const 
     mesh.bounds(minX, minY, maxX, maxY);
     if (!w.grid()) {
         StoreCrs crs = localCrs();
-        if (o.crs) {
-            auto c = crsFromUser(*o.crs);
+        if (o.toCrs) {
+            e.error("IMPORT_USAGE", source, "--to-crs",
+                    "an SWW mesh is rasterised in its own CRS (name it with --assign-crs)");
+            return e;
+        }
+        if (const auto& given = o.assignCrs ? o.assignCrs : o.crs) {
+            auto c = crsFromUser(*given, o.assignCrs ? "--assign-crs" : "--crs");
             if (!c) return c.diagnostics;
             crs = *c;
         } else if (mesh.epsg()) {
@@ -801,11 +855,8 @@ static Diagnostics importSequenceImpl(const std::vector<std::string>& sources,
                         "frame holds no valid value (all nodata)");
                 return e;
             }
-            PlaceOptions po;
-            po.crs = o.crs;
-            po.pixelSize = o.pixelSize;
+            PlaceOptions po = placeOptions(o, fr.file);
             po.nearest = categorical;
-            po.sourceName = fr.file;
             auto ps = placeSource(w, std::move(ds), po, o.tileSize, warnings);
             if (!ps) return ps.diagnostics;
             const int index = int(existing.size() + i);

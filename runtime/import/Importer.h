@@ -13,8 +13,12 @@ namespace kiosk::import {
 /** @brief Everything `geokiosk import` accepts (docs/cli.md); defaults match the CLI. */
 struct ImportOptions {
     std::filesystem::path store;
-    std::string name;                     ///< layer / sequence name (elevation default "elevation")
-    std::optional<std::string> crs;       ///< --crs: target CRS (new store) or source CRS
+    std::string name;                ///< layer / sequence name (elevation default "elevation")
+    std::optional<std::string> crs;  ///< --crs (deprecated): assign if CRS-less, else target
+    std::optional<std::string> assignCrs;  ///< --assign-crs: the source's CRS
+    std::optional<std::string> toCrs;      ///< --to-crs: a new store's CRS (warp target)
+    std::optional<int> band;               ///< --band: elevation band (1-based)
+    std::int64_t memoryBudget = std::int64_t(2) << 30;  ///< --max-memory (bytes)
     std::optional<double> pixelSize;      ///< --pixel-size: for sources without georeferencing
     double zScale = 1.0;                  ///< --z-scale: raw value multiplier
     std::optional<std::string> units;     ///< --units m|ft (elevation) or free text (sequence)

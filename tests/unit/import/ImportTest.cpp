@@ -6,6 +6,7 @@
 #include "runtime/import/Topographic.h"
 #include "runtime/io/StoreReader.h"
 #include "runtime/topo/NormalMap.h"
+#include "tests/unit/import/ImportTestSupport.h"
 
 #include <cpl_conv.h>
 #include <gdal.h>
@@ -27,17 +28,14 @@
 namespace fs = std::filesystem;
 using namespace kiosk;
 using namespace kiosk::import;
+using namespace kiosk::import::test;
 
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 fs::path testDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    fs::path d = fs::temp_directory_path() / "geokiosk-import-test" / info->name();
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
+    return import::test::freshTestDir("geokiosk-import-test");
 }
 
 std::string sharedData(const std::string& rel) {
@@ -45,21 +43,6 @@ std::string sharedData(const std::string& rel) {
     fs::path base = root ? fs::path(root) : fs::path("../shared/data");
     fs::path p = base / rel;
     return fs::exists(p) ? p.string() : std::string();
-}
-
-bool haveTool(const char* name) {
-    return std::system((std::string("command -v ") + name + " >/dev/null 2>&1").c_str()) == 0;
-}
-
-std::string wktOf(int epsg) {
-    OGRSpatialReferenceH s = OSRNewSpatialReference(nullptr);
-    OSRImportFromEPSG(s, epsg);
-    char* w = nullptr;
-    OSRExportToWkt(s, &w);
-    std::string out = w;
-    CPLFree(w);
-    OSRDestroySpatialReference(s);
-    return out;
 }
 
 void writeTiff(const fs::path& p, int w, int h, const double gt[6], int epsg,
@@ -97,19 +80,6 @@ fs::path makeDem(const fs::path& dir, std::vector<float>* values = nullptr) {
     writeTiff(p, w, h, gt, 32610, v, -9999.0);
     if (values) *values = v;
     return p;
-}
-
-ImportOptions options(const fs::path& store) {
-    ImportOptions o;
-    o.store = store;
-    o.quiet = true;
-    return o;
-}
-
-std::unique_ptr<io::StoreReader> openStore(const fs::path& p) {
-    auto r = io::StoreReader::open(p);
-    EXPECT_TRUE(r.ok()) << r.diagnostics.format();
-    return r.ok() ? std::move(*r) : nullptr;
 }
 
 // The finest level of a scalar layer assembled into one array (window of the grid from 0,0).
