@@ -1,6 +1,6 @@
 // bench-wall: the display wall's swap barrier on loopback (docs/wall.md). The leader runs here
 // with the real SwapBarrier and ZeroMQ transport; 4 and then 16 follower *processes* (this
-// binary with --follower) run FollowerSync and report ready as soon as a state arrives, so the
+// bench-wall-follower) run FollowerSync and report ready as soon as a state arrives, so the
 // figures are the protocol's cost, not drawing. Baseline in the same run: one node's headless
 // frame time on the demo scenario (drawFrame + glFinish at 1280x720, tiles resident).
 //   bench-wall SCENARIO [--frames N] [--size WxH]      prints ONE JSON object
@@ -9,7 +9,6 @@
 #include "runtime/core/Clock.h"
 #include "runtime/core/Strings.h"
 #include "runtime/gl/RenderTarget.h"
-#include "runtime/wall/FollowerSync.h"
 #include "runtime/wall/SwapBarrier.h"
 #include "runtime/wall/ZmqTransport.h"
 
@@ -38,49 +37,14 @@ double nowUs() {
         .count();
 }
 
-/** Follower process: swap times (µs, monotonic, shared by all processes) to `outPath` at Stop. */
-int runFollower(const std::string& state, const std::string& ready, std::uint32_t screen,
-                const std::string& outPath) {
-    auto t = wall::FollowerTransport::connect({state, ready, 100.0});
-    if (!t) return 3;
-    wall::FollowerSync f(screen, 30.0);
-    std::vector<std::pair<std::uint64_t, double>> swaps;
-    const double until = nowUs() + 120e6;
-    while (!f.stopped() && nowUs() < until) {
-        if (auto m = (*t)->receive(Us(20000))) {
-            switch (wall::messageType(*m).value_or(wall::MessageType::Ready)) {
-                case wall::MessageType::State:
-                    f.onState(*wall::decodeState(*m), nowUs() / 1e6);
-                    break;
-                case wall::MessageType::Release:
-                    f.onRelease(*wall::decodeRelease(*m));
-                    break;
-                case wall::MessageType::Stop:
-                    f.onStop();
-                    break;
-                default:
-                    break;
-            }
-        }
-        if (f.takeStateToDraw())
-            if (auto r = f.drawn(true, true, 0)) (*t)->send(wall::encode(*r));
-        if (f.swapDue()) {
-            const double us = nowUs();
-            swaps.emplace_back(f.swapped(), us);
-        }
-    }
-    std::ofstream out(outPath);
-    for (const auto& [frame, us] : swaps) out << frame << ' ' << std::int64_t(us) << '\n';
-    return 0;
-}
-
 struct BarrierRun {
     std::vector<double> barrierUs;  ///< state published -> release published
     std::vector<double> skewUs;     ///< latest minus earliest swap of one frame over all nodes
     int deadlineReleases = 0;
+    int joined = 0;  ///< followers ready at the first frame (all of them, or the figures are void)
 };
 
-BarrierRun runLeader(const char* self, int followers, int frames) {
+BarrierRun runLeader(const std::string& followerBin, int followers, int frames) {
     BarrierRun run;
     auto leader = wall::LeaderTransport::bind({"tcp://127.0.0.1:*", "tcp://127.0.0.1:*", 100.0});
     if (!leader) {
@@ -97,7 +61,7 @@ BarrierRun runLeader(const char* self, int followers, int frames) {
         const pid_t pid = fork();
         if (pid == 0) {
             prctl(PR_SET_PDEATHSIG, SIGKILL);
-            execl(self, self, "--follower", stateEp.c_str(), readyEp.c_str(),
+            execl(followerBin.c_str(), followerBin.c_str(), stateEp.c_str(), readyEp.c_str(),
                   std::to_string(i + 1).c_str(), out.c_str(), static_cast<char*>(nullptr));
             _exit(127);
         }
@@ -112,7 +76,7 @@ BarrierRun runLeader(const char* self, int followers, int frames) {
         const double t0 = nowUs();
         (*leader)->publish(wall::encode(s));
         // Frame 1 waits for every follower process to start and join (not timed).
-        barrier.begin(s.frame, t0 / 1e6, frame == 1 ? 30.0 : 0.1);
+        barrier.begin(s.frame, t0 / 1e6, frame == 1 ? 120.0 : 0.1);
         barrier.leaderReady(true);
         double lastSend = t0;
         while (!barrier.releasable(nowUs() / 1e6)) {
@@ -124,6 +88,7 @@ BarrierRun runLeader(const char* self, int followers, int frames) {
                 if (auto r = wall::decodeReady(*m)) barrier.onReady(*r);
         }
         const wall::Release r = barrier.release();
+        if (frame == 1) run.joined = int(r.readyNodes) - 1;
         (*leader)->publish(wall::encode(r));
         leaderSwap[std::size_t(frame)] = nowUs();
         if (frame > 1) {
@@ -161,8 +126,6 @@ nlohmann::json summary(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc == 6 && std::strcmp(argv[1], "--follower") == 0)
-        return runFollower(argv[2], argv[3], std::uint32_t(std::atoi(argv[4])), argv[5]);
     if (argc < 2) {
         std::fprintf(stderr, "usage: bench-wall SCENARIO [--frames N] [--size WxH]\n");
         return 2;
@@ -207,10 +170,15 @@ int main(int argc, char** argv) {
                                         std::to_string(width) + "x" + std::to_string(height)},
                            {"frame_ms", summary(ms)}};
     }
+    // The follower processes: bench-wall-follower next to this binary (sync only, no GL).
+    const std::string self = argv[0];
+    const std::string followerBin =
+        self.substr(0, self.find_last_of('/') + 1) + "bench-wall-follower";
     nlohmann::json runs = nlohmann::json::array();
     for (int followers : {4, 16}) {
-        const BarrierRun r = runLeader(argv[0], followers, frames);
+        const BarrierRun r = runLeader(followerBin, followers, frames);
         runs.push_back({{"followers", followers},
+                        {"joined", r.joined},
                         {"barrier_us", summary(r.barrierUs)},
                         {"swap_skew_us", summary(r.skewUs)},
                         {"deadline_releases", r.deadlineReleases}});
