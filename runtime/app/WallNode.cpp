@@ -168,6 +168,7 @@ bool WallNode::barrier(Session& session, const std::function<void()>& redraw) {
 
 bool WallNode::leaderBarrier(Session& session, const std::function<void()>& redraw) {
     bool ownReady = false;
+    double readyAt = 0;
     double lastPublish = monotonicSeconds();
     for (;;) {
         const double now = monotonicSeconds();
@@ -175,6 +176,7 @@ bool WallNode::leaderBarrier(Session& session, const std::function<void()>& redr
             if (session.terrain().settled()) {
                 glFinish();  // "ready" means drawn: the swap is then only the present
                 ownReady = true;
+                readyAt = monotonicSeconds();
                 mBarrier->leaderReady(session.terrain().frameInfo().wantedSequenceResident);
             } else if (now < mBarrier->deadline()) {
                 redraw();  // loads what arrived; the frame is complete once nothing is missing
@@ -201,6 +203,8 @@ bool WallNode::leaderBarrier(Session& session, const std::function<void()>& redr
         }
     }
     mLastRelease = mBarrier->release();
+    // How long the wall waited for others after this node was ready (the barrier's stall).
+    mWaitUs = ownReady ? (monotonicSeconds() - readyAt) * 1e6 : 0.0;
     for (auto s : mBarrier->lastDropped())
         KIOSK_LOG_WARN(
             kTag,
@@ -254,8 +258,8 @@ void WallNode::swapped(const scene::SceneFrameInfo& info) {
         mState.stepTime, info.shownFrameA, info.shownFrameB,
         info.holdingSequence ? "true" : "false", us);
     if (isLeader())
-        std::fprintf(mLog, ",\"ready_nodes\":%u,\"by_deadline\":%s", mLastRelease.readyNodes,
-                     mLastRelease.byDeadline ? "true" : "false");
+        std::fprintf(mLog, ",\"ready_nodes\":%u,\"by_deadline\":%s,\"wait_us\":%.0f",
+                     mLastRelease.readyNodes, mLastRelease.byDeadline ? "true" : "false", mWaitUs);
     std::fputs("}\n", mLog);
     std::fflush(mLog);
 }

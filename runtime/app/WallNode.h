@@ -81,7 +81,8 @@ private:
     std::uint64_t mHash = 0;
     std::uint64_t mWarnedHash = 0;
     bool mWarnedSilent = false;
-    bool mReadySent = false;  ///< follower: the pending frame was reported
+    bool mReadySent = false;
+    double mWaitUs = 0;  ///< leader: last frame's wait from its own ready to the release  ///< follower: the pending frame was reported
     std::FILE* mLog = nullptr;
 };
 

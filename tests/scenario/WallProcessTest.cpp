@@ -256,14 +256,12 @@ TEST_F(WallProcessTest, KilledFollowerIsDroppedAndRejoins) {
 
     const auto leader = readLog(mDir / "tl.jsonl");
     ASSERT_GE(leader.size(), killedAt + 25);
-    // No stall: consecutive leader swaps never further apart than the deadline (plus a frame's
-    // own work on a loaded 2-core machine).
-    double worstGapMs = 0;
-    for (std::size_t i = std::max<std::size_t>(killedAt, 1); i < leader.size(); ++i)
-        worstGapMs = std::max(
-            worstGapMs,
-            (leader[i]["swap_us"].get<double>() - leader[i - 1]["swap_us"].get<double>()) / 1000.0);
-    EXPECT_LT(worstGapMs, kDeadlineMs + 250.0);
+    // No stall: after it was ready, the leader never waited for the others longer than the
+    // deadline (plus polling and scheduling slack on a loaded 2-core machine).
+    double worstWaitMs = 0;
+    for (std::size_t i = killedAt; i < leader.size(); ++i)
+        worstWaitMs = std::max(worstWaitMs, leader[i]["wait_us"].get<double>() / 1000.0);
+    EXPECT_LT(worstWaitMs, kDeadlineMs + 100.0);
     // The kill was noticed once (a deadline release), not on every frame after.
     int deadlineReleases = 0;
     for (std::size_t i = killedAt; i < killedAt + 50; ++i)
