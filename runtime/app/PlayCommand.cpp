@@ -10,6 +10,7 @@
 
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
+#include "runtime/app/KioskHooks.h"
 #include "runtime/app/Report.h"
 #include "runtime/app/Session.h"
 #include "runtime/app/Signals.h"
@@ -35,8 +36,8 @@ int usage(const std::string& message) {
     std::fprintf(stderr,
                  "geokiosk play: %s\nusage: geokiosk play SCENARIO [--display "
                  "auto|kms|x11|wayland|headless] [--size WxH] [--windowed] [--max-fps N] "
-                 "[--frames N] [--connector NAME] [--drm-device PATH] [--wall WALL.json --screen ID "
-                 "[--wall-log LOG.jsonl]]\n",
+                 "[--frames N] [--connector NAME] [--drm-device PATH] [--listen HOST:PORT] "
+                 "[--token-file FILE] [--wall WALL.json --screen ID [--wall-log LOG.jsonl]]\n",
                  message.c_str());
     return kExitUsage;
 }
@@ -59,11 +60,14 @@ anim::ScenarioClock makeClock(const Session& s) {
 }  // namespace
 
 int runPlayCommand(const std::vector<std::string>& argv) {
-    Args args("play", {"display", "size", "max-fps", "frames", "connector", "drm-device", "wall", "screen", "wall-log"},
-              {"windowed"});
+    std::vector<std::string> valueOptions = {"display",   "size",      "max-fps",
+                                             "frames",    "connector", "drm-device"};
+    for (const auto& o : KioskHooks::optionNames()) valueOptions.push_back(o);
+    for (const char* o : {"wall", "screen", "wall-log"}) valueOptions.push_back(o);  // display walls
+    Args args("play", valueOptions, {"windowed"});
     if (!args.parse(argv)) return usage(args.error());
     if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
-    const std::filesystem::path scenarioPath = args.positionals()[0];
+    std::filesystem::path scenarioPath = args.positionals()[0];
     platform::DisplayOptions dopts;
     if (auto d = args.value("display")) {
         auto kind = platform::parseDisplayKind(*d);
@@ -111,6 +115,11 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         return kExitBadInput;
     }
 
+    // A kiosk file (playlist) or a scenario; systemd notify and the HTTP service.
+    int kioskExit = kExitOk;
+    auto kiosk = KioskHooks::create(args, scenarioPath, kioskExit);
+    if (!kiosk) return kioskExit;
+
     auto display = platform::createDisplay(dopts);
     if (!display) {
         printDiagnostics(display.diagnostics);
@@ -123,12 +132,13 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         return kExitCannotRun;
     }
     KIOSK_LOG_INFO(kTag, "%s, %s", dpy.describe().c_str(), caps->renderer.c_str());
-    auto opened = Session::open(scenarioPath, *caps);
+    auto opened = kiosk->openFirst(*caps);
     if (!opened) {
         printDiagnostics(opened.diagnostics);
         return kExitBadInput;
     }
     std::unique_ptr<Session> session = std::move(*opened.value);
+    scenarioPath = kiosk->currentScenario();
     std::optional<gl::RenderTarget> offscreen;
     if (!dpy.hasSurface()) {
         auto rt = gl::RenderTarget::create(dpy.width(), dpy.height());
@@ -160,6 +170,22 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         if (stopRequested()) break;
         dpy.pollInput(input);
         if (input.quitRequested) break;
+        kiosk->stallWhileTestFileExists();
+        // Remote control (pause/play/seek/rate act on the clock; reload re-opens at the poll).
+        if (kiosk->applyControl(clock).reload) watchedStamps.clear();
+        // Playlists: the next entry when this one is done (or next/previous was asked for);
+        // a store replaced on disk: the same scenario re-opened on it at a step boundary.
+        if (auto next = kiosk->nextSession(clock, *caps)) {
+            session = std::move(next);
+            const double was = clock.current();
+            clock = makeClock(*session);
+            if (kiosk->keepsDataTime()) clock.seek(was);
+            scenarioPath = kiosk->currentScenario();
+            watched = session->scenario().sourceFiles;
+            watchedStamps = stamps(watched);
+            manual.reset();
+        }
+        session->setCurtain(kiosk->curtain());
         const double now = wall.now();
         const double dt = now - last;
         last = now;
@@ -176,11 +202,13 @@ int runPlayCommand(const std::vector<std::string>& argv) {
                     watched = session->scenario().sourceFiles;
                     watchedStamps = stamps(watched);
                     KIOSK_LOG_INFO(kTag, "%s: reloaded", scenarioPath.c_str());
+                    kiosk->noteReload(true);
                 } else {
                     // Keep the last good scenario on screen; say exactly why the edit was refused.
                     for (const auto& d : next.diagnostics.items())
                         KIOSK_LOG_ERROR(kTag, "edit rejected, keeping the previous scenario: %s",
                                         d.format().c_str());
+                    kiosk->noteReload(false);
                     if (const Diagnostic* e = next.diagnostics.firstError())
                         session->setNotice("scenario edit rejected: " + e->format());
                 }
@@ -252,6 +280,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         }
         if (offscreen) glFinish();
         if (wallNode) wallNode->swapped(session->terrain().frameInfo());
+        kiosk->frameDone(*session, clock, scenarioPath, (wall.now() - now) * 1000.0, t);
         if (maxFps > 0) {
             const double spent = wall.now() - now;
             const double wait = 1.0 / maxFps - spent;
@@ -259,6 +288,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         }
     }
     if (wallNode) wallNode->stop();
+    kiosk->service().stopping();
     KIOSK_LOG_INFO(kTag, "stopped cleanly");
     return kExitOk;
 }

@@ -236,10 +236,15 @@ void Session::drawOverlays(double time, int width, int height) {
     // previews, long titles), the title moves below it rather than being overdrawn.
     std::string label;
     float labelW = 0.0f;
+    // Tiles late: a sequence holds an older step. Label the time actually drawn and say so.
+    const auto& frameInfo = mScene->frameInfo();
+    const bool buffering = frameInfo.holdingSequence;
+    if (buffering && !std::isnan(frameInfo.heldDataTime)) time = frameInfo.heldDataTime;
     if ((mOverlayOnly & kOverlayTimeLabel) && sc.overlays.timeLabel.enabled && mEnd > mStart) {
         char buf[128];
         anim::formatTimeLabel(buf, sizeof buf, time, mStart, sc.overlays.timeLabel.format, mZone);
         label = buf;
+        if (buffering) label += "  buffering";
         if (sc.overlays.timeLabel.showOffset && label.find("T+") == std::string::npos &&
             label.find("T-") == std::string::npos)
             label += "  (" + anim::formatElapsed(time - mStart) + ")";
@@ -287,6 +292,7 @@ void Session::drawOverlays(double time, int width, int height) {
         o.text(20, y - 4, text, st.state == scene::LayerState::Ready ? kDim : kWarn);
         y -= line + 8;
     }
+    if (mCurtain > 0.0f) o.rect(0, 0, float(width), float(height), glm::vec4(0, 0, 0, mCurtain));
     o.end();
 }
 

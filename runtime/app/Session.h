@@ -49,6 +49,8 @@ public:
 
     /** @brief A line shown on screen until replaced (e.g. why a scenario edit was refused). */
     void setNotice(std::string notice) { mNotice = std::move(notice); }
+    /** @brief Black drawn over everything with this opacity (playlist fades; 0: none). */
+    void setCurtain(float alpha) { mCurtain = alpha; }
 
     /** @brief Select and load tiles for the view without drawing (render waits with this). */
     void prepare(const math::Camera& camera, double time) {
@@ -86,6 +88,7 @@ private:
     std::optional<render::OverlayRenderer> mOverlay;
     int mOverlayFontPx = 0;
     std::string mNotice;
+    float mCurtain = 0.0f;
     std::optional<OverlayLayout> mOverlayLayout;
     /** @brief Which overlays drawOverlays() draws (bits below) and the output height its font
      * follows (0: the height it is given); set per box by drawWallOverlays(). */

@@ -130,6 +130,13 @@ std::uint32_t TileLoader::inFlight() const {
     return mRingCount + (mLoading ? 1u : 0u);
 }
 
+std::uint32_t TileLoader::queued() const {
+    std::lock_guard<std::mutex> lock(mMutex);
+    // A dirty shared set replaces the work queue on the loader's next look; else work is current.
+    return std::uint32_t((mSharedDirty ? mShared.size() : mWork.size()) +
+                         (mPrefetchDirty ? mPrefetchShared.size() : mPrefetchWork.size()));
+}
+
 bool TileLoader::isPendingLocked(const terrain::TileKey& key) const {
     return std::find(mPending.begin(), mPending.end(), key) != mPending.end();
 }

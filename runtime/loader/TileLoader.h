@@ -100,6 +100,8 @@ public:
     LoaderCounters counters() const;
     /** @brief Loads running or finished but not yet popped. */
     std::uint32_t inFlight() const;
+    /** @brief Requests handed over and not yet started (frame set plus prefetch set). */
+    std::uint32_t queued() const;
 
 private:
     void run();

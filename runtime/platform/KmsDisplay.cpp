@@ -1,6 +1,7 @@
 #include "runtime/core/Log.h"
 #include "runtime/platform/Backends.h"
 #include "runtime/platform/EglCommon.h"
+#include "runtime/platform/KmsFlipLoop.h"
 #include "runtime/platform/KmsSelection.h"
 
 #include <gbm.h>
@@ -68,7 +69,8 @@ void destroyBoFramebuffer(gbm_bo* bo, void* data) {
     delete fb;
 }
 
-class KmsDisplay final : public Display {
+// The display owns the DRM/GBM objects and lends them to the flip loop as its KmsDevice.
+class KmsDisplay final : public Display, private KmsDevice {
 public:
     KmsDisplay() = default;
     ~KmsDisplay() override;
@@ -90,8 +92,16 @@ private:
     bool chooseMode(int width, int height, Diagnostics& diags);
     bool chooseCrtc(Diagnostics& diags);
     bool createEgl(Diagnostics& diags);
-    std::uint32_t framebufferFor(gbm_bo* bo);
-    bool waitForFlip();
+    // KmsDevice
+    Buffer lockFrontBuffer() override { return gbm_surface_lock_front_buffer(mSurface); }
+    void releaseBuffer(Buffer b) override {
+        gbm_surface_release_buffer(mSurface, static_cast<gbm_bo*>(b));
+    }
+    std::uint32_t framebufferFor(Buffer b) override;
+    bool setMode(std::uint32_t fb) override;
+    bool pageFlip(std::uint32_t fb) override;
+    Wait waitForFlip(int timeoutMs) override;
+    bool connectorConnected() override;
     static void onPageFlip(int fd, unsigned sequence, unsigned sec, unsigned usec, void* user);
 
     std::string mDevice;
@@ -106,31 +116,27 @@ private:
     gbm_device* mGbm = nullptr;
     gbm_surface* mSurface = nullptr;
     std::unique_ptr<EglContext> mEgl = std::make_unique<EglContext>();
-    gbm_bo* mScanoutBo = nullptr;  ///< on screen now
-    gbm_bo* mPendingBo = nullptr;  ///< queued by a page flip that has not completed yet
-    bool mModeSet = false;
+    KmsFlipLoop mFlips{*this, kFlipTimeoutMs};
+    bool mFlipDone = false;
     bool mWarnedTimeout = false;
 };
 
 KmsDisplay::~KmsDisplay() {
     // Reverse order of create(): let the last flip land, give the CRTC back, release the
     // buffers, then EGL (its surface wraps the GBM surface), GBM, master and the device.
-    if (mPendingBo) waitForFlip();
+    if (mSurface) mFlips.settle();
     if (mSavedCrtc) {
-        if (mModeSet && mSavedCrtc->mode_valid) {
+        if (mFlips.modeSet() && mSavedCrtc->mode_valid) {
             std::uint32_t connector = mConnector->connector_id;
             drmModeSetCrtc(mFd, mSavedCrtc->crtc_id, mSavedCrtc->buffer_id, mSavedCrtc->x,
                            mSavedCrtc->y, &connector, 1, &mSavedCrtc->mode);
-        } else if (mModeSet) {
+        } else if (mFlips.modeSet()) {
             // The CRTC was off before us: switch it off again rather than leave our buffer.
             drmModeSetCrtc(mFd, mSavedCrtc->crtc_id, 0, 0, 0, nullptr, 0, nullptr);
         }
         drmModeFreeCrtc(mSavedCrtc);
     }
-    if (mSurface) {
-        if (mPendingBo) gbm_surface_release_buffer(mSurface, mPendingBo);
-        if (mScanoutBo) gbm_surface_release_buffer(mSurface, mScanoutBo);
-    }
+    if (mSurface) mFlips.releaseAll();
     mEgl.reset();
     if (mSurface) gbm_surface_destroy(mSurface);
     if (mGbm) gbm_device_destroy(mGbm);
@@ -331,7 +337,8 @@ bool KmsDisplay::create(const DisplayOptions& options, Diagnostics& diags) {
     return true;
 }
 
-std::uint32_t KmsDisplay::framebufferFor(gbm_bo* bo) {
+std::uint32_t KmsDisplay::framebufferFor(Buffer buffer) {
+    auto* bo = static_cast<gbm_bo*>(buffer);
     if (auto* fb = static_cast<BoFramebuffer*>(gbm_bo_get_user_data(bo))) return fb->id;
     auto* fb = new BoFramebuffer{mFd, 0};
     const int rc = drmModeAddFB(mFd, gbm_bo_get_width(bo), gbm_bo_get_height(bo), 24, 32,
@@ -346,82 +353,68 @@ std::uint32_t KmsDisplay::framebufferFor(gbm_bo* bo) {
     return fb->id;
 }
 
+bool KmsDisplay::setMode(std::uint32_t fb) {
+    std::uint32_t connector = mConnector->connector_id;
+    if (drmModeSetCrtc(mFd, mCrtcId, fb, 0, 0, &connector, 1, &mMode) == 0) return true;
+    KIOSK_LOG_ERROR(kTag, "cannot set mode %s on %s %s: %s", modeName(mMode).c_str(),
+                    mDevice.c_str(), mConnectorName.c_str(), std::strerror(errno));
+    return false;
+}
+
+bool KmsDisplay::pageFlip(std::uint32_t fb) {
+    mFlipDone = false;
+    if (drmModePageFlip(mFd, mCrtcId, fb, DRM_MODE_PAGE_FLIP_EVENT, this) == 0) return true;
+    KIOSK_LOG_ERROR(kTag, "page flip on %s failed: %s", mDevice.c_str(), std::strerror(errno));
+    return false;
+}
+
+bool KmsDisplay::connectorConnected() {
+    // drmModeGetConnectorCurrent reads the state the kernel has, without a slow probe.
+    ConnectorPtr c(drmModeGetConnectorCurrent(mFd, mConnector->connector_id));
+    return c && c->connection == DRM_MODE_CONNECTED;
+}
+
 void KmsDisplay::onPageFlip(int fd, unsigned sequence, unsigned sec, unsigned usec, void* user) {
     (void)fd;
     (void)sequence;
     (void)sec;
     (void)usec;
-    auto* self = static_cast<KmsDisplay*>(user);
-    // The flip landed: the previous buffer is no longer scanned out and goes back to GBM.
-    if (self->mScanoutBo) gbm_surface_release_buffer(self->mSurface, self->mScanoutBo);
-    self->mScanoutBo = self->mPendingBo;
-    self->mPendingBo = nullptr;
+    static_cast<KmsDisplay*>(user)->mFlipDone = true;
 }
 
-bool KmsDisplay::waitForFlip() {
+KmsDevice::Wait KmsDisplay::waitForFlip(int timeoutMs) {
     drmEventContext ctx{};
     ctx.version = 2;  // page_flip_handler is all we need
     ctx.page_flip_handler = onPageFlip;
-    const auto deadline =
-        std::chrono::steady_clock::now() + std::chrono::milliseconds(kFlipTimeoutMs);
-    while (mPendingBo) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeoutMs);
+    while (!mFlipDone) {
         const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
                               deadline - std::chrono::steady_clock::now())
                               .count();
-        if (left <= 0) {
-            if (!mWarnedTimeout)
-                KIOSK_LOG_WARN(kTag, "page flip on %s did not complete within %d ms",
-                               mDevice.c_str(), kFlipTimeoutMs);
-            mWarnedTimeout = true;
-            return false;
-        }
+        if (left <= 0) return Wait::Timeout;
         pollfd pfd{mFd, POLLIN, 0};
         const int rc = poll(&pfd, 1, int(left));
         if (rc < 0 && errno != EINTR) {
             KIOSK_LOG_ERROR(kTag, "poll on %s failed: %s", mDevice.c_str(), std::strerror(errno));
-            return false;
+            return Wait::Error;
         }
         if (rc > 0) drmHandleEvent(mFd, &ctx);
     }
-    return true;
+    return Wait::Flipped;
 }
 
 bool KmsDisplay::swapBuffers() {
-    // A flip that timed out last frame may still land; never queue a second one behind it.
-    if (mPendingBo && !waitForFlip()) return false;
     if (!mEgl->swap()) return false;
-    gbm_bo* next = gbm_surface_lock_front_buffer(mSurface);
-    if (!next) {
-        KIOSK_LOG_ERROR(kTag, "gbm_surface_lock_front_buffer failed");
-        return false;
-    }
-    const std::uint32_t fb = framebufferFor(next);
-    if (!fb) {
-        gbm_surface_release_buffer(mSurface, next);
-        return false;
-    }
-    if (!mModeSet) {
-        // First frame: a blocking mode set puts our buffer on the CRTC; flips follow.
-        std::uint32_t connector = mConnector->connector_id;
-        if (drmModeSetCrtc(mFd, mCrtcId, fb, 0, 0, &connector, 1, &mMode) != 0) {
-            KIOSK_LOG_ERROR(kTag, "cannot set mode %s on %s %s: %s", modeName(mMode).c_str(),
-                            mDevice.c_str(), mConnectorName.c_str(), std::strerror(errno));
-            gbm_surface_release_buffer(mSurface, next);
-            return false;
-        }
-        mModeSet = true;
-        mScanoutBo = next;
+    if (mFlips.present()) {
+        mWarnedTimeout = false;
         return true;
     }
-    if (drmModePageFlip(mFd, mCrtcId, fb, DRM_MODE_PAGE_FLIP_EVENT, this) != 0) {
-        KIOSK_LOG_ERROR(kTag, "page flip on %s failed: %s", mDevice.c_str(), std::strerror(errno));
-        gbm_surface_release_buffer(mSurface, next);
-        return false;
-    }
-    mPendingBo = next;
-    if (!waitForFlip()) return false;
-    mWarnedTimeout = false;
-    return true;
+    // Log once per episode: a display that stays stuck must not flood the journal.
+    if (!mWarnedTimeout || mFlips.unplugged())
+        KIOSK_LOG_ERROR(kTag, "%s %s: %s", mDevice.c_str(), mConnectorName.c_str(),
+                        mFlips.error().c_str());
+    mWarnedTimeout = true;
+    return false;
 }
 
 }  // namespace

@@ -467,6 +467,11 @@ void TerrainScene::update(const math::Camera& camera, double time) {
             l.shown.alpha = w.alpha;
         }
         mFrame.holdingSequence = mFrame.holdingSequence || l.shown.holding;
+        // The picture never lies about time: the label shows the held pair's time, not the clock's.
+        if (l.shown.holding && l.shown.hasPair && std::isnan(mFrame.heldDataTime)) {
+            const auto& ft = l.sequence->frameTimes;
+            mFrame.heldDataTime = ft[l.shown.i0] + l.shown.alpha * (ft[l.shown.i1] - ft[l.shown.i0]);
+        }
         countPrefetchHits(l, i == mFirstSequenceLayer);
     }
     if (reselect) mSelection = &mSelector.select(camera, mStats, *mResidency);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -49,6 +50,8 @@ struct SceneFrameInfo {
     std::uint32_t requests = 0;
     std::uint32_t uploads = 0;
     bool holdingSequence = false;  ///< a sequence shows an older complete frame pair
+    /** @brief While holding with a pair on screen: the data time that pair shows (else NaN). */
+    double heldDataTime = std::numeric_limits<double>::quiet_NaN();
     /** @brief Tiles of one sequence drew different frames (must never happen: atomic steps). */
     bool mixedSequenceFrames = false;
     std::int32_t shownFrameA = -1;  ///< first sequence layer: frames on screen (-1: none)
@@ -74,6 +77,14 @@ struct SceneFrameInfo {
     double uploadMs = 0;                   ///< GPU uploads (and evicted releases) this frame
     /** @brief Every sequence pair at this frame's own time is resident (a wall may step to it). */
     bool wantedSequenceResident = true;
+};
+
+/** @brief Bytes held by the tile cache by kind, and loader requests waiting (kiosk /metrics). */
+struct SceneCacheUsage {
+    std::uint64_t cpuTiles = 0;     ///< CPU payloads (budget terrain.cache_bytes)
+    std::uint64_t gpuTextures = 0;  ///< uploaded imagery / raster textures
+    std::uint64_t gpuMeshes = 0;    ///< uploaded terrain meshes
+    std::uint32_t loaderQueue = 0;  ///< requests waiting for the loader thread
 };
 
 /** @brief A transfer function ready for the GPU and the legend. */
@@ -127,6 +138,8 @@ public:
     bool settled() const noexcept { return mSettled; }
     const SceneFrameInfo& frameInfo() const noexcept { return mFrame; }
     const std::vector<LayerStatus>& layerStatus() const noexcept { return mStatus; }
+    /** @brief Cache bytes by kind (TerrainSceneUsage.cpp); walks the GPU slots, no allocation. */
+    SceneCacheUsage cacheUsage() const;
 
     /** @brief World bounds of the data: extent and min/max elevation. */
     const math::Aabb& bounds() const noexcept { return mBounds; }

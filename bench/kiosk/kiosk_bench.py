@@ -1,0 +1,189 @@
+#!/usr/bin/python3
+"""Kiosk benchmarks (issue 15), each printing ONE JSON object with its same-run baseline:
+
+  soak     FRAMES frames of the demo (looping clock and camera path) at 64x36 headless from a
+           kiosk file with 16 MiB cache budgets, a scenario reload (POST /control/reload, taken at
+           the next 0.5 s poll) every RELOAD frames; RSS after warm-up (the baseline) vs
+           at the end. Goal: growth < 2 MB over 1,000,000 frames. --bound-mb makes it a test.
+  restart  kill -9 of a running kiosk, then process start -> READY=1 (sd_notify), median of 5;
+           baseline: the first, cold start of the same run.
+  scrape   frame time of the demo flight with /metrics scraped 50 times a second vs not scraped,
+           alternating 4 phases each (same run). Goal: change < 2 %.
+
+usage: kiosk_bench.py soak|restart|scrape GEOKIOSK REPO_ROOT [--frames N] [--reload N]
+       [--bound-mb MB] [--seconds S]"""
+import argparse
+import json
+import os
+import re
+import signal
+import statistics
+import sys
+import threading
+import time
+import urllib.request
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../tests/service"))
+from kiosk_common import Kiosk, NotifySocket, gl_env, temp_dir  # noqa: E402
+
+DEMO = "scenarios/demo/rainier.json"
+
+
+def scrape(port):
+    with urllib.request.urlopen("http://127.0.0.1:%d/metrics" % port, timeout=10) as r:
+        text = r.read().decode()
+    out = {}
+    for name in ("geokiosk_frames_total", "geokiosk_resident_memory_bytes",
+                 "geokiosk_frame_time_ms_sum", "geokiosk_frame_time_ms_count",
+                 "geokiosk_reloads_total", "geokiosk_reload_failures_total"):
+        m = re.search(r"^%s (\S+)$" % name, text, re.M)
+        out[name] = float(m.group(1)) if m else None
+    return out
+
+
+def post(port, path, token):
+    req = urllib.request.Request("http://127.0.0.1:%d%s" % (port, path), method="POST")
+    req.add_header("Authorization", "Bearer " + token)
+    urllib.request.urlopen(req, timeout=10).read()
+
+
+def soak(a, tmp):
+    token = os.path.join(tmp, "token")
+    with open(token, "w") as f:
+        f.write("bench\n")
+    # A kiosk file with small per-kiosk cache budgets: the caches reach their budget during the
+    # warm-up, so growth after it is what the budgets do not cover (leaks, unbounded lists).
+    kiosk = os.path.join(tmp, "kiosk.json")
+    with open(kiosk, "w") as f:
+        json.dump({"playlist": [{"scenario": os.path.abspath(DEMO), "duration": "300d"}],
+                   "listen": "127.0.0.1:0", "tokenFile": token,
+                   "budgets": {"cacheBytes": a.budget_mb << 20, "gpuBytes": a.budget_mb << 20}}, f)
+    k = Kiosk(a.geokiosk, [kiosk, "--display", "headless", "--size", "64x36", "--frames",
+                           str(a.frames)], gl_env(), os.path.join(tmp, "log"))
+    k.wait_port()
+    warm_at = max(int(a.frames * 0.4), min(a.reload * 2, a.frames // 2))
+    next_reload, warm, last = a.reload, None, None
+    started = time.monotonic()
+    while k.proc.poll() is None:
+        try:
+            m = scrape(k.port)
+        except OSError:
+            break
+        last = m
+        frames = m["geokiosk_frames_total"] or 0
+        if frames >= next_reload:
+            post(k.port, "/control/reload", "bench")
+            next_reload += a.reload
+        if warm is None and frames >= warm_at:
+            warm = m
+        if frames >= a.frames - max(50, a.frames // 200):
+            break  # the end: read RSS while the process is still there
+        time.sleep(0.02)
+    end = last
+    elapsed = time.monotonic() - started
+    k.proc.wait(timeout=120)
+    rc = k.stop()
+    growth = (end["geokiosk_resident_memory_bytes"] - warm["geokiosk_resident_memory_bytes"]) / 2**20
+    result = {"benchmark": "kiosk_soak", "frames": int(end["geokiosk_frames_total"]),
+              "size": "64x36", "reload_every": a.reload, "cache_budgets_mb": a.budget_mb,
+              "reloads": int(end["geokiosk_reloads_total"]),
+              "reload_failures": int(end["geokiosk_reload_failures_total"]),
+              "baseline_rss_mb_after_warmup": round(warm["geokiosk_resident_memory_bytes"] / 2**20, 2),
+              "warmup_frames": int(warm["geokiosk_frames_total"]),
+              "rss_mb_at_end": round(end["geokiosk_resident_memory_bytes"] / 2**20, 2),
+              "rss_growth_mb": round(growth, 2), "goal_growth_mb": 2.0,
+              "mean_frame_ms": round(end["geokiosk_frame_time_ms_sum"] /
+                                     end["geokiosk_frame_time_ms_count"], 3),
+              "wall_seconds": round(elapsed, 1), "exit": rc}
+    print(json.dumps(result))
+    if a.bound_mb is not None:
+        ok = rc == 0 and growth < a.bound_mb and result["reloads"] >= 1 and \
+            result["reload_failures"] == 0
+        print("%s: RSS growth %.2f MB (bound %.1f MB), %d reloads, exit %s" %
+              ("ok" if ok else "FAIL", growth, a.bound_mb, result["reloads"], rc))
+        return 0 if ok else 1
+    return 0
+
+
+def restart(a, tmp):
+    notify = NotifySocket(tmp)
+    env = gl_env()
+    env["NOTIFY_SOCKET"] = notify.path
+    times = []
+    for i in range(6):
+        t0 = time.monotonic()
+        k = Kiosk(a.geokiosk, [DEMO, "--display", "headless", "--size", "640x360"], env,
+                  os.path.join(tmp, "log%d" % i))
+        seen = notify.wait_for("READY=1", 120)
+        t1 = time.monotonic()
+        if seen is None:
+            print(json.dumps({"benchmark": "kiosk_restart", "error": "no READY",
+                              "log": k.log_text()[-500:]}))
+            return 1
+        times.append(t1 - t0)
+        k.proc.send_signal(signal.SIGKILL)  # the crash systemd restarts from
+        k.proc.wait()
+        k.log.close()
+    print(json.dumps({"benchmark": "kiosk_restart", "size": "640x360",
+                      "baseline_cold_start_to_ready_s": round(times[0], 3),
+                      "restart_to_ready_s_median_of_5": round(statistics.median(times[1:]), 3),
+                      "restart_to_ready_s": [round(t, 3) for t in times[1:]]}))
+    return 0
+
+
+def scrape_bench(a, tmp):
+    k = Kiosk(a.geokiosk, [DEMO, "--display", "headless", "--size", "640x360", "--listen",
+                           "127.0.0.1:0"], gl_env(), os.path.join(tmp, "log"))
+    k.wait_port()
+    time.sleep(3)  # warm-up: tiles of the tour start loading
+    phases = {"none": [], "scrape_50hz": []}
+    scrapes = 0
+    for rnd in range(4):
+        for mode in ("none", "scrape_50hz"):
+            m0 = scrape(k.port)
+            stop = time.monotonic() + a.seconds
+            while time.monotonic() < stop:
+                if mode == "scrape_50hz":
+                    scrape(k.port)
+                    scrapes += 1
+                    time.sleep(0.02)
+                else:
+                    time.sleep(0.05)
+            m1 = scrape(k.port)
+            n = m1["geokiosk_frame_time_ms_count"] - m0["geokiosk_frame_time_ms_count"]
+            ms = (m1["geokiosk_frame_time_ms_sum"] - m0["geokiosk_frame_time_ms_sum"]) / n
+            phases[mode].append(ms)
+    k.stop()
+    base = statistics.mean(phases["none"])
+    with_scrape = statistics.mean(phases["scrape_50hz"])
+    print(json.dumps({"benchmark": "kiosk_scrape", "size": "640x360",
+                      "phase_seconds": a.seconds, "phases_each": 4,
+                      "baseline_frame_ms_no_scrape": round(base, 3),
+                      "frame_ms_scraped_50hz": round(with_scrape, 3),
+                      "change_percent": round(100 * (with_scrape - base) / base, 2),
+                      "scrapes": scrapes,
+                      "per_phase_ms": {k2: [round(v, 3) for v in vals]
+                                       for k2, vals in phases.items()},
+                      "goal_change_percent": 2.0}))
+    return 0
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("which", choices=["soak", "restart", "scrape"])
+    p.add_argument("geokiosk")
+    p.add_argument("root")
+    p.add_argument("--frames", type=int, default=1000000)
+    p.add_argument("--reload", type=int, default=10000)
+    p.add_argument("--bound-mb", type=float)
+    p.add_argument("--seconds", type=float, default=5.0)
+    p.add_argument("--budget-mb", type=int, default=16)
+    a = p.parse_args()
+    a.geokiosk = os.path.abspath(a.geokiosk)
+    os.chdir(a.root)
+    with temp_dir() as tmp:
+        return {"soak": soak, "restart": restart, "scrape": scrape_bench}[a.which](a, tmp)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
