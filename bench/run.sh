@@ -9,7 +9,8 @@ cd "$ROOT"
 "$ROOT/tools/prepare-demo.sh" "$BUILD/geokiosk" >&2
 export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/share/glvnd/egl_vendor.d/50_mesa.json
 export GALLIUM_DRIVER=llvmpipe
-"$BUILD/bench/bench-frame" scenarios/demo/rainier.json --frames ${KIOSK_BENCH_FRAMES:-60}
+"$BUILD/bench/bench-frame" scenarios/demo/rainier.json --frames ${KIOSK_BENCH_FRAMES:-60} \
+    --target-fps ${KIOSK_BENCH_TARGET_FPS:-10}
 # The seed paper's data set (Wahl 2004): Puget Sound 1025^2 at 160 m, terrain only.
 PUGET=$ROOT/../shared/data/puget_sound_heightmap/ps_height_1k.png
 if [[ -f "$PUGET" ]]; then

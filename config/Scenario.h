@@ -38,12 +38,17 @@ struct SourceRef {
     std::string sequence;  ///< a time-keyed sequence of the store, or empty
 };
 
+/** @brief What the terrain draws: the error-bounded LOD, or every post (fidelity checks). */
+enum class TerrainReference { Lod, Full };
+
 struct Terrain {
     std::string store;
     std::string elevation = "elevation";
     double tauGeom = 2.0;  ///< screen-space geometric error threshold, pixels
     double tauTex = 1.0;   ///< texture error threshold, pixels
     double verticalExaggeration = 1.0;
+    /** @brief Full: the finest level everywhere with exact meshes (tauGeom/tauTex unused). */
+    TerrainReference reference = TerrainReference::Lod;
     std::int64_t cacheBytes = 512ll << 20;  ///< CPU tile cache budget
     std::int64_t gpuBytes = 256ll << 20;    ///< resident texture/mesh budget
     std::string pointer = "/terrain";
@@ -271,6 +276,17 @@ struct Lighting {
 };
 
 /** @brief A whole scenario after includes were merged and every reference resolved. */
+/**
+ * @brief The frame-rate governor of `play` (docs/animation.md): holds `targetFps` by raising
+ * tauGeom/tauTex up to `maxTauFactor` times the scenario's, then lowering the render scale down
+ * to `minRenderScale`. `render` never uses it. targetFps 0 = off.
+ */
+struct Governor {
+    double targetFps = 0.0;
+    double maxTauFactor = 4.0;
+    double minRenderScale = 0.5;
+};
+
 struct Scenario {
     int version = kScenarioVersion;
     std::string title;
@@ -287,6 +303,7 @@ struct Scenario {
     Camera camera;
     Overlays overlays;
     Lighting lighting;
+    Governor governor;
 
     /** @brief The scenario file first, then every included or referenced file (hot reload). */
     std::vector<std::filesystem::path> sourceFiles;

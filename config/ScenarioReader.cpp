@@ -27,9 +27,10 @@ const std::map<std::string, std::vector<std::string>>& propertyTable() {
         {"Scenario",
          {"$schema", "version", "include", "title", "caption", "stores", "terrain", "layers",
           "transferFunctions", "clock", "lenses", "projectiveMappings", "viewpoints", "cameraPaths",
-          "camera", "overlays", "lighting"}},
+          "camera", "overlays", "lighting", "governor"}},
+        {"Governor", {"targetFps", "maxTauFactor", "minRenderScale"}},
         {"Terrain",
-         {"store", "elevation", "tauGeom", "tauTex", "verticalExaggeration", "cacheBytes",
+         {"store", "elevation", "tauGeom", "tauTex", "verticalExaggeration", "reference", "cacheBytes",
           "gpuBytes"}},
         {"Layer",
          {"id", "kind", "source", "transfer", "operation", "enabled", "interpolate", "nodataAs"}},
@@ -458,6 +459,8 @@ const EnumTable<OperationType> kOperations = {
     {"opacity", OperationType::Opacity}, {"blend", OperationType::Blend},
     {"add", OperationType::Add},         {"modulate", OperationType::Modulate},
     {"mask", OperationType::Mask},       {"replace", OperationType::Replace}};
+const EnumTable<TerrainReference> kTerrainReferences = {{"lod", TerrainReference::Lod},
+                                                        {"full", TerrainReference::Full}};
 const EnumTable<SequenceInterpolation> kInterpolations = {
     {"data", SequenceInterpolation::Data},
     {"none", SequenceInterpolation::None},
@@ -530,6 +533,7 @@ public:
         if (const json* j = o.get("camera")) camera(*j);
         if (const json* j = o.get("overlays")) overlays(*j);
         if (const json* j = o.get("lighting")) lighting(*j);
+        if (const json* j = o.get("governor")) governor(*j);
         crossReferences();
     }
 
@@ -557,6 +561,7 @@ private:
         assign(t.tauGeom, o.num("tauGeom", tau));
         assign(t.tauTex, o.num("tauTex", tau));
         assign(t.verticalExaggeration, o.num("verticalExaggeration", Range{0, 100, true, false}));
+        assign(t.reference, o.oneOf("reference", kTerrainReferences));
         if (const json* b = o.get("cacheBytes"))
             assign(t.cacheBytes, readBytes(mC, *b, o.at("cacheBytes")));
         if (const json* b = o.get("gpuBytes"))
@@ -1088,6 +1093,15 @@ private:
         const int hours = (tz[1] - '0') * 10 + (tz[2] - '0');
         if (hours > 14 || minutes > 59) return std::nullopt;
         return (tz[0] == '-' ? -1 : 1) * (hours * 60 + minutes);
+    }
+
+    void governor(const json& j) {
+        Obj o(mC, j, "/governor", "Governor");
+        if (!o.valid()) return;
+        Governor& g = mS.governor;
+        assign(g.targetFps, o.num("targetFps", Range{0, 240}));
+        assign(g.maxTauFactor, o.num("maxTauFactor", Range{1, 16}));
+        assign(g.minRenderScale, o.num("minRenderScale", Range{0.25, 1}));
     }
 
     void lighting(const json& j) {

@@ -186,6 +186,8 @@ nlohmann::json replay(const std::string& scenario, int w, int h, double seconds,
         r["fill_bound_ms"] = b;
         r["fill_bound_fetches_per_pixel"] = fetches;
         r["ratio_to_fill_bound"] = p50 / std::max(1e-9, b);
+        r["fill_bound_fraction"] = b / std::max(1e-9, p50);
+        r["within_1_5x_fill_bound"] = p50 <= 1.5 * b;
     }
     return r;
 }

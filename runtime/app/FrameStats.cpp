@@ -41,6 +41,9 @@ std::string FrameStats::toJson() const {
         frames["mappings_active"].push_back(f.mappingsActive);
         frames["mappings_culled_frustum"].push_back(f.mappingsCulledFrustum);
         frames["mappings_culled_size"].push_back(f.mappingsCulledSize);
+        frames["tau_geom"].push_back(f.tauGeom);
+        frames["tau_tex"].push_back(f.tauTex);
+        frames["render_scale"].push_back(f.renderScale);
     }
     j["summary"] = {{"frames", mFrames.size()},
                     {"frame_ms", {{"median", percentile(ms, 50)},

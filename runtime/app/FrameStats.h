@@ -31,6 +31,10 @@ struct FrameRecord {
     std::uint32_t uploads = 0;
     double drawMs = 0;     ///< terrain draw submission (vertex work, binning, shader variants)
     double overlayMs = 0;  ///< overlays
+    // What the frame was drawn with: the scenario's tau, or the frame-rate governor's (play).
+    double tauGeom = 0;
+    double tauTex = 0;
+    double renderScale = 1;  ///< fraction of the output size the terrain was rendered at
 };
 
 /** @brief Percentile by linear interpolation between closest ranks (p in [0,100]). */

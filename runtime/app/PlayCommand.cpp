@@ -5,9 +5,11 @@
 #include <cmath>
 #include <optional>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <thread>
 
+#include "runtime/anim/FrameGovernor.h"
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
 #include "runtime/app/KioskHooks.h"
@@ -32,12 +34,42 @@ constexpr double kReloadPollSeconds = 0.5;
 /** How far ahead (wall seconds) the camera path is sampled for prefetching. */
 constexpr double kPrefetchSeconds = 2.0;
 
+/**
+ * Test hook: GEOKIOSK_TEST_FRAME_COST_MS=MS[:FRAMES] adds an artificial cost to each of the
+ * first FRAMES frames (all when omitted), modelled on a fill-bound frame: MS at the scenario's
+ * settings, times the rendered fraction of the pixels and the scenario's tauGeom over the one
+ * used. Lets the governor be tested on any machine (tests/scenario/GovernorPlayTest).
+ */
+class TestFrameCost {
+public:
+    TestFrameCost() {
+        const char* v = std::getenv("GEOKIOSK_TEST_FRAME_COST_MS");
+        if (!v || !*v) return;
+        char* end = nullptr;
+        mMs = std::strtod(v, &end);
+        if (end && *end == ':') mFrames = std::strtol(end + 1, nullptr, 10);
+        if (!(mMs > 0)) mMs = 0;
+    }
+    void spend(long frame, Session& s) const {
+        if (mMs <= 0 || (mFrames >= 0 && frame >= mFrames)) return;
+        const double scale = s.renderScale();
+        const double tau = s.scenario().terrain.tauGeom / std::max(1e-9, s.terrain().tauGeom());
+        const double ms = mMs * scale * scale * tau;
+        std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(ms));
+    }
+
+private:
+    double mMs = 0;
+    long mFrames = -1;
+};
+
 int usage(const std::string& message) {
     std::fprintf(stderr,
                  "geokiosk play: %s\nusage: geokiosk play SCENARIO [--display "
                  "auto|kms|x11|wayland|headless] [--size WxH] [--windowed] [--max-fps N] "
                  "[--frames N] [--connector NAME] [--drm-device PATH] [--listen HOST:PORT] "
-                 "[--token-file FILE] [--wall WALL.json --screen ID [--wall-log LOG.jsonl]]\n",
+                 "[--token-file FILE] [--target-fps N] [--stats STATS.json] [--wall WALL.json --screen ID "
+                 "[--wall-log LOG.jsonl]]\n",
                  message.c_str());
     return kExitUsage;
 }
@@ -57,11 +89,22 @@ anim::ScenarioClock makeClock(const Session& s) {
     return clock ? *clock.value : anim::ScenarioClock();
 }
 
+/** The scenario's governor, `--target-fps` overriding its frame rate. */
+anim::FrameGovernor makeGovernor(const Session& s, std::optional<double> targetFps) {
+    const config::Governor& g = s.scenario().governor;
+    anim::GovernorSettings gs;
+    gs.targetFps = targetFps.value_or(g.targetFps);
+    gs.maxTauFactor = g.maxTauFactor;
+    gs.minRenderScale = g.minRenderScale;
+    return anim::FrameGovernor(gs, s.scenario().terrain.tauGeom, s.scenario().terrain.tauTex);
+}
+
 }  // namespace
 
 int runPlayCommand(const std::vector<std::string>& argv) {
     std::vector<std::string> valueOptions = {"display",   "size",      "max-fps",
-                                             "frames",    "connector", "drm-device"};
+                                             "frames",    "connector", "drm-device",
+                                             "target-fps", "stats"};
     for (const auto& o : KioskHooks::optionNames()) valueOptions.push_back(o);
     for (const char* o : {"wall", "screen", "wall-log"}) valueOptions.push_back(o);  // display walls
     Args args("play", valueOptions, {"windowed"});
@@ -95,6 +138,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         dopts.height = wallScreen->height();
     }
     dopts.windowed = args.flag("windowed");
+    dopts.shouldStop = stopRequested;
     dopts.connector = args.value("connector").value_or("");
     dopts.drmDevice = args.value("drm-device").value_or("");
     double maxFps = 0;
@@ -102,6 +146,13 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         char* end = nullptr;
         maxFps = std::strtod(f->c_str(), &end);
         if (end == f->c_str() || *end || !(maxFps > 0)) return usage("--max-fps wants a positive number");
+    }
+    std::optional<double> targetFps;
+    if (auto f = args.value("target-fps")) {
+        char* end = nullptr;
+        targetFps = std::strtod(f->c_str(), &end);
+        if (end == f->c_str() || *end || !(*targetFps >= 0) || *targetFps > 240)
+            return usage("--target-fps wants a number of frames per second in 0..240 (0: off)");
     }
     long frameLimit = -1;
     if (auto f = args.value("frames")) {
@@ -161,6 +212,10 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     installStopSignals();
     RealClock wall;
     anim::ScenarioClock clock = makeClock(*session);
+    anim::FrameGovernor governor = makeGovernor(*session, targetFps);
+    TestFrameCost testCost;
+    std::optional<FrameStats> stats;
+    if (args.value("stats")) stats.emplace();
     auto watched = session->scenario().sourceFiles;
     auto watchedStamps = stamps(watched);
     double lastPoll = wall.now(), last = wall.now();
@@ -179,6 +234,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             session = std::move(next);
             const double was = clock.current();
             clock = makeClock(*session);
+            governor = makeGovernor(*session, targetFps);
             if (kiosk->keepsDataTime()) clock.seek(was);
             scenarioPath = kiosk->currentScenario();
             watched = session->scenario().sourceFiles;
@@ -199,6 +255,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
                 if (next) {
                     session = std::move(*next.value);
                     clock = makeClock(*session);
+                    governor = makeGovernor(*session, targetFps);
                     watched = session->scenario().sourceFiles;
                     watchedStamps = stamps(watched);
                     KIOSK_LOG_INFO(kTag, "%s: reloaded", scenarioPath.c_str());
@@ -259,7 +316,11 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         else
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
         session->setPlayback(wallNode ? wallNode->playback() : scene::playbackOf(clock));
-        session->drawFrame(cam, t, w, h);
+        if (!wallNode && governor.state().active) {  // walls: every screen at the same LOD
+            session->terrain().setTau(governor.state().tauGeom, governor.state().tauTex);
+            session->setRenderScale(governor.state().renderScale);
+        }
+        FrameRecord rec = session->drawFrame(cam, t, w, h);
         // Camera paths are known in advance: ask for the tiles of the view two seconds ahead.
         if (wallNode) {  // from the leader's playback state, through this screen's frustum
             const scene::Playback p = wallNode->playback();
@@ -280,7 +341,12 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         }
         if (offscreen) glFinish();
         if (wallNode) wallNode->swapped(session->terrain().frameInfo());
-        kiosk->frameDone(*session, clock, scenarioPath, (wall.now() - now) * 1000.0, t);
+        testCost.spend(frame, *session);
+        // The frame's cost as the viewer sees it (update, draw, present), not the --max-fps wait.
+        rec.frameMs = (wall.now() - now) * 1000.0;
+        governor.frameDone(rec.frameMs);
+        if (stats) stats->add(rec);
+        kiosk->frameDone(*session, clock, scenarioPath, rec.frameMs, t);
         if (maxFps > 0) {
             const double spent = wall.now() - now;
             const double wait = 1.0 / maxFps - spent;
@@ -289,6 +355,13 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     }
     if (wallNode) wallNode->stop();
     kiosk->service().stopping();
+    if (stats) {
+        Diagnostics d;
+        if (!stats->write(*args.value("stats"), d)) {
+            printDiagnostics(d);
+            return kExitBadInput;
+        }
+    }
     KIOSK_LOG_INFO(kTag, "stopped cleanly");
     return kExitOk;
 }

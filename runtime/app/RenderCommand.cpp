@@ -32,7 +32,7 @@ constexpr double kSettleTimeoutSeconds = 120.0;
 int usage(const std::string& message) {
     std::fprintf(stderr, "geokiosk render: %s\nusage: geokiosk render SCENARIO --out OUT [--time T | "
                          "--from T0 --to T1 --fps N] [--size WxH] [--viewpoint NAME] "
-                         "[--stats STATS.json] [--wall WALL.json --screen ID]\n",
+                         "[--stats STATS.json] [--reference lod|full] [--wall WALL.json --screen ID]\n",
                  message.c_str());
     return kExitUsage;
 }
@@ -40,7 +40,8 @@ int usage(const std::string& message) {
 }  // namespace
 
 int runRenderCommand(const std::vector<std::string>& argv) {
-    Args args("render", {"out", "time", "from", "to", "fps", "size", "viewpoint", "stats", "wall", "screen"}, {});
+    Args args("render", {"out", "time", "from", "to", "fps", "size", "viewpoint", "stats", "reference", "wall", "screen"},
+              {});
     if (!args.parse(argv)) return usage(args.error());
     if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
     const std::filesystem::path scenarioPath = args.positionals()[0];
@@ -86,6 +87,9 @@ int runRenderCommand(const std::vector<std::string>& argv) {
                 return usage("--" + std::string(name) + " wants an ISO 8601 UTC time or +offset, got '" + *v + "'");
         }
     }
+    const auto reference = args.value("reference");
+    if (reference && *reference != "lod" && *reference != "full")
+        return usage("--reference wants lod or full, got '" + *reference + "'");
     std::error_code ec;
     if (!std::filesystem::exists(scenarioPath, ec)) {
         std::fprintf(stderr, "%s: scenario file not found\n", scenarioPath.c_str());
@@ -106,7 +110,12 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         printDiagnostics(caps.diagnostics);
         return kExitCannotRun;
     }
-    auto session = Session::open(scenarioPath, *caps);
+    // --reference full: the same view at full resolution, to compare a LOD frame against.
+    auto session = Session::open(scenarioPath, *caps, [&reference](config::Scenario& sc) {
+        if (reference)
+            sc.terrain.reference =
+                *reference == "full" ? config::TerrainReference::Full : config::TerrainReference::Lod;
+    });
     if (!session) {
         printDiagnostics(session.diagnostics);
         return kExitBadInput;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "config/MeaningCheck.h"
@@ -128,9 +129,32 @@ Result<math::Viewpoint> Session::viewpointAt(double time, const std::string& vie
     return mScene->overviewViewpoint();
 }
 
+void Session::setRenderScale(double scale) {
+    mRenderScale = std::clamp(scale, 0.1, 1.0);
+}
+
+bool Session::bindScaledTarget(int width, int height, int& outFbo) {
+    const int w = std::max(1, int(std::lround(width * mRenderScale)));
+    const int h = std::max(1, int(std::lround(height * mRenderScale)));
+    if (w == width && h == height) return false;
+    if (!mScaled || mScaled->width() != w || mScaled->height() != h) {
+        auto rt = gl::RenderTarget::create(w, h);
+        if (!rt) return false;  // no smaller target: render at full size
+        mScaled.emplace(std::move(*rt.value));
+    }
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &outFbo);
+    mScaled->bind();
+    glViewport(0, 0, w, h);
+    return true;
+}
+
 FrameRecord Session::drawFrame(const math::Camera& camera, double time, int width, int height) {
     const auto& sc = *mScenario;
-    glViewport(0, 0, width, height);
+    // Render scale < 1 (the frame-rate governor): the terrain goes to a smaller target that is
+    // then stretched over the output; overlays are drawn at the output's own resolution.
+    GLint outFbo = 0;
+    const bool scaled = bindScaledTarget(width, height, outFbo);
+    if (!scaled) glViewport(0, 0, width, height);
     glClearColor(0.62f, 0.71f, 0.80f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     using PhaseClock = std::chrono::steady_clock;
@@ -169,9 +193,17 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     for (const auto& l : sc.layers)
         if (l.enabled && (l.kind == config::LayerKind::Topographic || l.kind == config::LayerKind::Normals))
             style.geometryLighting = 0.0f;
-    style.tauTex = float(sc.terrain.tauTex);
+    style.tauTex = float(mScene->tauTex());
     const auto tDraw = PhaseClock::now();
     mScene->draw(camera, style);
+    if (scaled) {
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, mScaled->framebuffer());
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(outFbo));
+        glBlitFramebuffer(0, 0, mScaled->width(), mScaled->height(), 0, 0, width, height,
+                          GL_COLOR_BUFFER_BIT, GL_LINEAR);
+        glBindFramebuffer(GL_FRAMEBUFFER, GLuint(outFbo));
+        glViewport(0, 0, width, height);
+    }
     const double drawMs = msSince(tDraw);
     const auto tOverlay = PhaseClock::now();
     mOverlayLayout ? drawWallOverlays(time, width, height) : drawOverlays(time, width, height);
@@ -197,6 +229,9 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     r.uploads = f.uploads;
     r.drawMs = drawMs;
     r.overlayMs = overlayMs;
+    r.tauGeom = mScene->tauGeom();
+    r.tauTex = mScene->tauTex();
+    r.renderScale = scaled ? double(mScaled->width()) / double(width) : 1.0;
     return r;
 }
 
@@ -280,6 +315,23 @@ void Session::drawOverlays(double time, int width, int height) {
         const float w = o.measure(text) + 16;
         o.rect(12, y - line, w, line + 6, kPanel);
         o.text(20, y - 4, text, kWarn);
+        y -= line + 8;
+    }
+    // The frame-rate governor at work (play): say what it trades, so nobody mistakes the
+    // coarser picture for the scenario's.
+    const bool governed = sc.terrain.reference == config::TerrainReference::Lod &&
+                          (mScene->tauGeom() != sc.terrain.tauGeom ||
+                           mScene->tauTex() != sc.terrain.tauTex || mRenderScale < 1.0);
+    if (governed) {
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "frame-rate governor: tauGeom %.3g px (scenario %.3g), tauTex %.3g px (%.3g), "
+                      "render scale %.2f",
+                      mScene->tauGeom(), sc.terrain.tauGeom, mScene->tauTex(), sc.terrain.tauTex,
+                      mRenderScale);
+        const float w = o.measure(text) + 16;
+        o.rect(12, y - line, w, line + 6, kPanel);
+        o.text(20, y - 4, text, kDim);
         y -= line + 8;
     }
     for (const auto& st : mScene->layerStatus()) {

@@ -13,6 +13,7 @@
 #include "runtime/app/FrameStats.h"
 #include "runtime/core/Result.h"
 #include "runtime/gl/Context.h"
+#include "runtime/gl/RenderTarget.h"
 #include "runtime/render/OverlayRenderer.h"
 #include "runtime/scene/TerrainScene.h"
 
@@ -76,10 +77,18 @@ public:
     /** @brief Update tiles for the view and draw terrain + overlays into the bound framebuffer. */
     FrameRecord drawFrame(const math::Camera& camera, double time, int width, int height);
 
+    /**
+     * @brief Fraction of the output size (per axis) the terrain is rendered at, then stretched
+     * (the frame-rate governor's last lever; `play` only). 1 = full size.
+     */
+    void setRenderScale(double scale);
+    double renderScale() const noexcept { return mRenderScale; }
+
 private:
     Session() = default;
     void drawOverlays(double time, int width, int height);
     void drawLegend(const config::LegendOverlay& legend, int width, int height);
+    bool bindScaledTarget(int width, int height, int& outFbo);
     /** @brief drawOverlays() once per wall overlay box (SessionWall.cpp). */
     void drawWallOverlays(double time, int width, int height);
 
@@ -100,6 +109,8 @@ private:
     anim::TimeZone mZone;
     double mStart = 0, mEnd = 0;
     scene::Playback mPlayback;
+    double mRenderScale = 1.0;
+    std::optional<gl::RenderTarget> mScaled;  ///< terrain target while mRenderScale < 1
 };
 
 /** @brief Camera for a viewpoint with clip planes fitted to the scene. */

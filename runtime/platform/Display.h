@@ -21,6 +21,11 @@ struct DisplayOptions {
     bool vsync = true;       ///< swap interval 1 on displays
     std::string drmDevice;   ///< KMS: /dev/dri/cardN; empty picks the first that has a connector
     std::string connector;   ///< KMS: connector name ("HDMI-A-1") or index; empty: first connected
+    /**
+     * @brief Asked while a swap waits for the compositor (Wayland frame callbacks): true ends
+     * the wait (SIGTERM), so a compositor that stops repainting cannot keep the process alive.
+     */
+    bool (*shouldStop)() = nullptr;
 };
 
 /**

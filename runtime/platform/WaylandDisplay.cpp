@@ -81,6 +81,15 @@ private:
     static const xdg_toplevel_listener kToplevelListener;
     static const wl_seat_listener kSeatListener;
     static const wl_keyboard_listener kKeyboardListener;
+    static const wl_callback_listener kFrameListener;
+    // wl_callback of wl_surface.frame: the compositor wants the next frame.
+    static void onFrameDone(void* data, wl_callback* cb, uint32_t) {
+        wl_callback_destroy(cb);
+        auto* self = static_cast<WaylandDisplay*>(data);
+        self->mFrameCallback = nullptr;
+    }
+    /** @brief Dispatch events, waiting at most `timeoutMs` for some to arrive. */
+    void dispatchWaiting(int timeoutMs);
 
     wl_display* mDisplay = nullptr;
     wl_registry* mRegistry = nullptr;
@@ -93,6 +102,9 @@ private:
     xdg_toplevel* mToplevel = nullptr;
     wl_egl_window* mEglWindow = nullptr;
     std::unique_ptr<EglContext> mEgl = std::make_unique<EglContext>();
+    wl_callback* mFrameCallback = nullptr;  ///< pending wl_surface.frame (vsync pacing)
+    bool mVsync = true;
+    bool (*mShouldStop)() = nullptr;
 
     int mWidth = 0;
     int mHeight = 0;
@@ -105,6 +117,7 @@ private:
 };
 
 const wl_registry_listener WaylandDisplay::kRegistryListener = {onGlobal, onGlobalRemove};
+const wl_callback_listener WaylandDisplay::kFrameListener = {onFrameDone};
 const xdg_wm_base_listener WaylandDisplay::kWmBaseListener = {onPing};
 const xdg_surface_listener WaylandDisplay::kSurfaceListener = {onSurfaceConfigure};
 const xdg_toplevel_listener WaylandDisplay::kToplevelListener = {
@@ -172,6 +185,7 @@ void WaylandDisplay::onKey(void* data, wl_keyboard*, uint32_t, uint32_t, uint32_
 
 WaylandDisplay::~WaylandDisplay() {
     // EGL's surface wraps the wl_egl_window, which wraps the wl_surface: innermost first.
+    if (mFrameCallback) wl_callback_destroy(mFrameCallback);
     mEgl.reset();
     if (mEglWindow) wl_egl_window_destroy(mEglWindow);
     if (mToplevel) xdg_toplevel_destroy(mToplevel);
@@ -251,7 +265,13 @@ bool WaylandDisplay::create(const DisplayOptions& options, Diagnostics& diags) {
         return false;
     // Interval 1: eglSwapBuffers waits for the compositor's frame callback (Mesa does that on
     // its own queue); 0 never blocks.
-    mEgl->setSwapInterval(options.vsync ? 1 : 0);
+    // Frame pacing is ours (a wl_surface.frame callback per swap), not Mesa's: Mesa's
+    // eglSwapBuffers at interval 1 blocks inside EGL until the callback comes, and a compositor
+    // that stops sending them (weston 10 kiosk-shell on the headless backend does after the first
+    // frame; a hidden window may) would then hold the process beyond SIGTERM.
+    mEgl->setSwapInterval(0);
+    mVsync = options.vsync;
+    mShouldStop = options.shouldStop;
     KIOSK_LOG_INFO(kTag, "%s", describe().c_str());
     return true;
 }
@@ -268,8 +288,31 @@ void WaylandDisplay::dispatchNonBlocking() {
     wl_display_dispatch_pending(mDisplay);
 }
 
+void WaylandDisplay::dispatchWaiting(int timeoutMs) {
+    while (wl_display_prepare_read(mDisplay) != 0) wl_display_dispatch_pending(mDisplay);
+    wl_display_flush(mDisplay);
+    pollfd pfd{wl_display_get_fd(mDisplay), POLLIN, 0};
+    if (poll(&pfd, 1, timeoutMs) > 0)
+        wl_display_read_events(mDisplay);
+    else
+        wl_display_cancel_read(mDisplay);
+    wl_display_dispatch_pending(mDisplay);
+}
+
 bool WaylandDisplay::swapBuffers() {
+    // Ask for the compositor's "draw the next one now" before the swap commits the surface.
+    if (mVsync && !mFrameCallback) {
+        mFrameCallback = wl_surface_frame(mSurface);
+        wl_callback_add_listener(mFrameCallback, &kFrameListener, this);
+    }
     if (!mEgl->swap()) return false;
+    // Wait for it: the frame loop runs at the compositor's pace and, while the compositor shows
+    // nothing, no frame completes (so the kiosk watchdog stops being fed). SIGTERM still ends the
+    // wait within 100 ms.
+    while (mVsync && mFrameCallback && wl_display_get_error(mDisplay) == 0) {
+        if (mShouldStop && mShouldStop()) return true;
+        dispatchWaiting(100);
+    }
     dispatchNonBlocking();
     return wl_display_get_error(mDisplay) == 0;
 }

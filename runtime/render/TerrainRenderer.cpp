@@ -184,8 +184,7 @@ void TerrainRenderer::setLayer(int index, const LayerBinding& b) {
 }
 
 void TerrainRenderer::draw(const GpuMesh& mesh, const glm::dvec3& origin, bool fromAncestor) {
-    constexpr double kHuge = 1e30;
-    draw(mesh, origin, fromAncestor, glm::dvec2(-kHuge), glm::dvec2(kHuge));
+    draw(mesh, origin, fromAncestor, glm::dvec2(-kNoClip), glm::dvec2(kNoClip));
 }
 
 void TerrainRenderer::draw(const GpuMesh& mesh, const glm::dvec3& origin, bool fromAncestor,

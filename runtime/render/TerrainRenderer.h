@@ -98,6 +98,8 @@ public:
     void begin(const math::Camera& camera, const glm::dvec3& sceneOrigin, const TerrainStyle& style);
     /** @brief Layer i's texture and rectangle for the next draw() calls. */
     void setLayer(int index, const LayerBinding& binding);
+    /** @brief Clip half-extent that keeps every fragment (no clipping). */
+    static constexpr double kNoClip = 1e30;
     /** @brief Draw one mesh whose vertex positions are relative to `origin` (world metres). */
     void draw(const GpuMesh& mesh, const glm::dvec3& origin, bool fromAncestor = false);
     /** @brief Same, keeping only fragments inside the world rectangle [clipMin, clipMax]. */

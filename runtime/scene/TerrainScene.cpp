@@ -121,8 +121,12 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
             }
     }
 
-    s->mOptions.tauGeom = scenario.terrain.tauGeom;
-    s->mOptions.tauTex = scenario.terrain.tauTex;
+    if (scenario.terrain.reference == config::TerrainReference::Full)
+        s->mOptions = terrain::TerrainOptions::fullResolutionReference();
+    else {
+        s->mOptions.tauGeom = scenario.terrain.tauGeom;
+        s->mOptions.tauTex = scenario.terrain.tauTex;
+    }
     io::TileStats rootStats;
     if (s->mStats.lookup({0, 0, 0}, rootStats) == terrain::TileState::Known)
         s->mOptions.neighbourErrorBound =
@@ -616,7 +620,21 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
             if (li == mFirstSequenceLayer) noteDrawnFrames(l, t);
         }
         bindTileMappings(p->key.id);
-        if (t.clipped) {
+        const int depthBelowMesh = t.id.level - t.geometry.id.level;
+        if (t.clipped && t.domainLevel == t.geometry.id.level &&
+            depthBelowMesh <= p->mesh->cellLevels) {
+            // The node's share of its geometry tile's mesh is a block of whole cells (its edges
+            // lie on the mesh's post grid, §2 of docs/terrain.md): draw exactly those cells,
+            // nothing to clip, so the shared edges are mesh edges and cannot open a crack.
+            const auto& gm = mGrid.levels[std::size_t(t.geometry.id.level)];
+            const glm::dvec2 inset(0.25 * gm.pixelXSize, 0.25 * gm.pixelYSize);
+            terrain::meshRangesInRect(*p->mesh, t.clipMin + inset, t.clipMax - inset, mCellRanges);
+            mRuns.clear();
+            for (const auto& c : mCellRanges) mRuns.push_back({c.first, c.count});
+            r.drawRanges(g.mesh, p->mesh->origin, t.fromAncestor,
+                         glm::dvec2(-render::TerrainRenderer::kNoClip),
+                         glm::dvec2(render::TerrainRenderer::kNoClip), mRuns.data(), mRuns.size());
+        } else if (t.clipped) {
             // Overlap the neighbours by a quarter post: with both clip edges on the same line,
             // float interpolation can leave a fragment neither side keeps (a one-pixel crack);
             // the overlap is resolved by the depth test.
@@ -642,6 +660,15 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
     mFrame.tilesDrawn = r.counters().tilesDrawn;
     mFrame.triangles = r.counters().triangles;
     mFrame.drawCalls = r.counters().drawCalls;
+}
+
+void TerrainScene::setTau(double tauGeom, double tauTex) {
+    if (mOptions.fullResolution || (mOptions.tauGeom == tauGeom && mOptions.tauTex == tauTex))
+        return;
+    mOptions.tauGeom = tauGeom;
+    mOptions.tauTex = tauTex;
+    mSelector.setOptions(mOptions);
+    mPrefetchSelector.setOptions(mOptions);
 }
 
 math::Viewpoint TerrainScene::overviewViewpoint() const {

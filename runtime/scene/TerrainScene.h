@@ -154,6 +154,13 @@ public:
      */
     bool setPositionOutput(bool on);
     const io::StoreInfo& storeInfo() const { return mReader->info(); }
+    /**
+     * @brief Screen-space error thresholds for the next selections (the frame-rate governor's
+     * lever); the loader's meshes do not depend on them. Ignored for the full-resolution reference.
+     */
+    void setTau(double tauGeom, double tauTex);
+    double tauGeom() const noexcept { return mOptions.tauGeom; }
+    double tauTex() const noexcept { return mOptions.tauTex; }
 
 private:
     TerrainScene() = default;

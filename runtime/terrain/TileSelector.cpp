@@ -89,6 +89,27 @@ math::Aabb TileSelector::nodeBounds(const TileId& id, double minZ, double maxZ) 
     return b;
 }
 
+void TileSelector::nodeDomain(const TileId& id, const TileId& geometry, bool meshIsGeometry,
+                              glm::dvec2& min, glm::dvec2& max) const {
+    // The planned geometry tile G's mesh covers G's bounds shifted half a post of G's level
+    // east/south (posts at pixel centres), plus skirts flaring another half post outwards. Its
+    // descendants partition exactly that domain, so their clip edges lie on G's post grid and
+    // the union of G's descendants is G drawn whole (docs/terrain.md §2).
+    double x0, y0, x1, y1;
+    mSetup.grid.tileBounds(id, x0, y0, x1, y1);
+    const io::TileMatrix& m = mSetup.grid.levels[std::size_t(geometry.level)];
+    const double px = m.pixelXSize, py = m.pixelYSize;
+    min = glm::dvec2(x0 + 0.5 * px, y0 - 0.5 * py);
+    max = glm::dvec2(x1 + 0.5 * px, y1 - 0.5 * py);
+    if (!meshIsGeometry) return;  // an ancestor drawn while G loads has no skirts on G's border
+    // Sides on G's border keep G's skirts (their bottoms flare to half a post past the surface).
+    const int span = 1 << (id.level - geometry.level);
+    if (id.column % span == 0) min.x = x0 - px;
+    if ((id.column + 1) % span == 0) max.x = x1 + 2.0 * px;
+    if (id.row % span == 0) max.y = y1 + py;
+    if ((id.row + 1) % span == 0) min.y = y0 - 2.0 * py;
+}
+
 double TileSelector::levelError(const TileId& geometryTile, int tier) const {
     io::TileStats s;
     double e = 0.0;
@@ -201,13 +222,8 @@ void TileSelector::emit(const TileId& id, const NodeInfo& info, double distance,
     tile.fromAncestor = coarser;
     tile.clipped = gk.id != id;
     tile.geometricErrorPx = levelError(gk.id, gk.frame) * ppm;
-    {
-        double x0, y0, x1, y1;
-        mSetup.grid.tileBounds(id, x0, y0, x1, y1);
-        const io::TileMatrix& m = mSetup.grid.levels[std::size_t(id.level)];
-        tile.clipMin = glm::dvec2(x0 + 0.5 * m.pixelXSize, y0 - 0.5 * m.pixelYSize);
-        tile.clipMax = glm::dvec2(x1 + 0.5 * m.pixelXSize, y1 - 0.5 * m.pixelYSize);
-    }
+    tile.domainLevel = wantedGeom.level;
+    nodeDomain(id, wantedGeom, gk.id == wantedGeom, tile.clipMin, tile.clipMax);
 
     // Textures, per layer (Döllner's texture loop): coarsest level whose texel is fine enough.
     tile.firstTexture = std::uint32_t(mResult.textures.size());
@@ -264,7 +280,15 @@ void TileSelector::visit(const TileId& id, const NodeInfo& parent) {
     const double tol = opt.tinTolerance(info.error);
     const double slack = info.error + tol;
     const math::Aabb box = nodeBounds(id, info.minZ - slack, info.maxZ + slack);
-    if (!mFrustum.intersects(box)) {
+    // Below its geometry tile G a node draws its share of G's mesh, which reaches a post of G's
+    // level past the node's bounds (nodeDomain); cull with that margin, keep `box` for distance.
+    math::Aabb cullBox = box;
+    if (info.geometryLevel >= 0 && info.geometryLevel < id.level) {
+        const io::TileMatrix& g = mSetup.grid.levels[std::size_t(info.geometryLevel)];
+        cullBox.min -= glm::dvec3(g.pixelXSize, g.pixelYSize, 0.0);
+        cullBox.max += glm::dvec3(g.pixelXSize, g.pixelYSize, 0.0);
+    }
+    if (!mFrustum.intersects(cullBox)) {
         ++mResult.counters.culled;
         return;
     }

@@ -71,10 +71,16 @@ struct DrawTile {
      * draw only the part of the mesh inside [clipMin, clipMax] (e.g. fragment discard).
      */
     bool clipped = false;
-    /** @brief World (CRS) xy domain of the node's mesh: its tile bounds shifted east/south by
-     * half a post of its level (posts sit at pixel centres, see TileMesh). */
+    /**
+     * @brief World (CRS) xy rectangle the node covers: its share of the planned geometry tile
+     * G's mesh (level `domainLevel`), i.e. its tile bounds shifted east/south by half a post of
+     * G's level (posts sit at pixel centres, see TileMesh); sides on G's border are opened by a
+     * post of G so that G's skirts are kept when G's own mesh is drawn.
+     */
     glm::dvec2 clipMin{0.0};
     glm::dvec2 clipMax{0.0};
+    /** @brief Level of the planned geometry tile G whose post grid the clip edges lie on. */
+    int domainLevel = 0;
     double distance = 0.0;           ///< eye to the node's bounding box (sort front to back)
     double geometricErrorPx = 0.0;   ///< projected error of the drawn mesh at `distance`
     std::uint32_t firstTexture = 0;  ///< into SelectionResult::textures
@@ -142,6 +148,9 @@ public:
 
     /** @brief The bounding box the selector uses for a node (exposed for tests/debug draw). */
     math::Aabb nodeBounds(const TileId& id, double minZ, double maxZ) const;
+    /** @brief DrawTile::clipMin/clipMax of node `id` under the planned geometry tile. */
+    void nodeDomain(const TileId& id, const TileId& geometry, bool meshIsGeometry, glm::dvec2& min,
+                    glm::dvec2& max) const;
 
 private:
     struct NodeInfo {

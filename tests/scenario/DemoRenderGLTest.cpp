@@ -16,6 +16,7 @@
 #include "runtime/io/StoreReader.h"
 #include "tests/support/EglTestContext.h"
 #include "tests/support/GoldenImage.h"
+#include "tests/support/StoreSurface.h"
 
 namespace kiosk::app {
 namespace {
@@ -233,46 +234,6 @@ TEST_F(SyntheticTerrain, SequenceStepsAreAtomicWithASlowLoader) {
     EXPECT_GT(framesWithSequence, 50);
 }
 
-/** Bilinear surface through a store's finest-level posts: the full-resolution reference. */
-class StoreSurface {
-public:
-    explicit StoreSurface(const fs::path& store) {
-        auto r = io::StoreReader::open(store);
-        if (!r) return;
-        mGrid = (*r)->info().grid;
-        const io::TileMatrix& m = mGrid.levels.back();
-        mW = m.matrixWidth * m.tileWidth;
-        mH = m.matrixHeight * m.tileHeight;
-        mZ.assign(std::size_t(mW) * std::size_t(mH), std::nanf(""));
-        for (int row = 0; row < m.matrixHeight; ++row)
-            for (int col = 0; col < m.matrixWidth; ++col) {
-                auto t = (*r)->readElevation("elevation", {mGrid.maxLevel(), col, row});
-                if (!t) continue;
-                for (int y = 0; y < m.tileHeight; ++y)
-                    for (int x = 0; x < m.tileWidth; ++x)
-                        mZ[std::size_t(row * m.tileHeight + y) * std::size_t(mW) +
-                           std::size_t(col * m.tileWidth + x)] = t->at(x, y);
-            }
-    }
-    /** Height at world (X, Y); NaN outside the data or next to nodata. */
-    double at(double X, double Y) const {
-        const io::TileMatrix& m = mGrid.levels.back();
-        const double fx = (X - mGrid.minX) / m.pixelXSize - 0.5, fy = (mGrid.maxY - Y) / m.pixelYSize - 0.5;
-        const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
-        if (x0 < 0 || y0 < 0 || x0 + 1 >= mW || y0 + 1 >= mH) return std::nan("");
-        const double ax = fx - x0, ay = fy - y0;
-        auto z = [&](int x, int y) { return double(mZ[std::size_t(y) * std::size_t(mW) + std::size_t(x)]); };
-        return (1 - ay) * ((1 - ax) * z(x0, y0) + ax * z(x0 + 1, y0)) +
-               ay * ((1 - ax) * z(x0, y0 + 1) + ax * z(x0 + 1, y0 + 1));
-    }
-    const io::TileGrid& grid() const { return mGrid; }
-
-private:
-    io::TileGrid mGrid;
-    int mW = 0, mH = 0;
-    std::vector<float> mZ;
-};
-
 /**
  * Renders positions for `vp` once every tile is resident and returns the worst screen-space
  * deviation (px) from `surface`, with the number of pixels measured and triangles drawn.
@@ -397,7 +358,7 @@ TEST_F(RealTerrain, PugetSoundLodStaysWithinTau) {
     auto s = Session::open(dir / "puget.json", *caps);
     ASSERT_TRUE(s.ok()) << s.diagnostics.format();
     ASSERT_TRUE((*s)->terrain().setPositionOutput(true));
-    const StoreSurface surface(io.store);
+    const test::StoreSurface surface(io.store);
     auto target = gl::RenderTarget::createFloat(320, 200);
     ASSERT_TRUE(target.ok());
     const glm::dvec3 c = (*s)->terrain().bounds().center();

@@ -39,6 +39,8 @@ expect 2 "--time and --from/--to are exclusive" "$GK" render $DEMO --out "$tmp/d
 expect 2 "wants an ISO 8601" "$GK" render $DEMO --out "$tmp/x.png" --time yesterday
 expect 2 "video export" "$GK" render $DEMO --out "$tmp/x.mp4"
 expect 2 "--display wants auto\|kms\|x11\|wayland\|headless.*did you mean 'kms'" "$GK" play $DEMO --display kmz
+expect 2 "--reference wants lod or full" "$GK" render $DEMO --out "$tmp/x.png" --reference exact
+expect 2 "--target-fps wants a number" "$GK" play $DEMO --display headless --target-fps -5
 # Bad input: exit 1, one line naming the file.
 expect 1 "nope.json: scenario file not found" "$GK" render nope.json --out "$tmp/x.png"
 expect 1 "scenarios/broken/unknown-transfer.json:[0-9]+:[0-9]+: /layers/1/transfer: unknown transfer function \"depht\" \(did you mean \"depth\"\?\)" \

@@ -359,6 +359,43 @@ TEST(TileSelector, TextureFinerThanGeometryDrawsClippedGeometry) {
     expectExactTiling(r, cam);
 }
 
+// Issue 12 (cracks): a node refined for texture only covers its share of its geometry tile
+// G's mesh, on G's post grid (half a post of G's level east/south of the node's bounds), and
+// sides on G's border are opened so G's surface and skirts are kept there. Clipping at the
+// node's own half post cut G's surface short on its east/south border and dropped its skirts.
+TEST(TileSelector, TextureOnlyNodesCoverTheirShareOfTheGeometryMesh) {
+    TerrainOptions opt;
+    opt.textureLevelsBeyondGeometry = 2;
+    Fixture f(kGeomMax + 3, {TextureLayerSpec{1, 0, kGeomMax + 2}}, opt);
+    const auto cam = camera({2048, 2048, 25}, 0, -90, 120);
+    const SelectionResult& r = f.select(cam);
+    int inner = 0, border = 0;
+    for (const DrawTile& t : r.tiles) {
+        if (!t.clipped) continue;
+        ASSERT_FALSE(t.fromAncestor);
+        EXPECT_EQ(t.domainLevel, t.geometry.id.level);
+        const double gp = 16.0 / double(1 << t.geometry.id.level);  // G's post spacing
+        double x0, y0, x1, y1, gx0, gy0, gx1, gy1;
+        tileBounds(t.id, x0, y0, x1, y1);
+        tileBounds(t.geometry.id, gx0, gy0, gx1, gy1);
+        // West/north: G's skirt bottom lies on G's bounds; east/south: a post of G outside.
+        EXPECT_EQ(t.clipMin.x, x0 == gx0 ? gx0 - gp : x0 + 0.5 * gp);
+        EXPECT_EQ(t.clipMax.y, y1 == gy1 ? gy1 + gp : y1 - 0.5 * gp);
+        EXPECT_EQ(t.clipMax.x, x1 == gx1 ? gx1 + 2.0 * gp : x1 + 0.5 * gp);
+        EXPECT_EQ(t.clipMin.y, y0 == gy0 ? gy0 - 2.0 * gp : y0 - 0.5 * gp);
+        // G's mesh surface spans [gx0 + gp/2, gx1 + gp/2]: every node on G's east border
+        // reaches past it (the old clip stopped a quarter post of the node's level past x1).
+        if (x1 == gx1) {
+            EXPECT_GT(t.clipMax.x, gx1 + gp);
+        }
+        const int onBorder = (x0 == gx0) + (x1 == gx1) + (y0 == gy0) + (y1 == gy1);
+        border += onBorder;
+        inner += 4 - onBorder;
+    }
+    EXPECT_GT(border, 0) << "sides on the geometry tile's border";
+    EXPECT_GT(inner, 0) << "sides inside it";
+}
+
 TEST(TileSelector, TextureLevelIsChosenIndependentlyOfGeometry) {
     // Rough geometry refines deep; a lax tauTex lets the texture come from an ancestor level.
     TerrainOptions opt;
@@ -435,10 +472,14 @@ TEST(TileSelector, FallsBackToNearestResidentAncestorAndRequests) {
             EXPECT_EQ(ta.key.id.level, 1);
             EXPECT_TRUE(requested.count(FakeResidency::id(ta.wanted)));
         }
-        // Clip rectangle = the node's own mesh domain (half a post east/south of its bounds).
+        // Clip rectangle = the node's share of its planned geometry tile's mesh domain: half a
+        // post of that tile's level east/south of the node's bounds; not opened on the planned
+        // tile's border, since the ancestor drawn instead has no skirts there.
         double x0, y0, x1, y1;
         tileBounds(t.id, x0, y0, x1, y1);
-        const double half = 0.5 * 16.0 / double(1 << t.id.level);
+        EXPECT_GT(t.domainLevel, t.geometry.id.level);
+        EXPECT_LE(t.domainLevel, t.id.level);
+        const double half = 0.5 * 16.0 / double(1 << t.domainLevel);
         EXPECT_EQ(t.clipMin, glm::dvec2(x0 + half, y0 - half));
         EXPECT_EQ(t.clipMax, glm::dvec2(x1 + half, y1 - half));
     }
