@@ -26,6 +26,7 @@ JSON
 else
     echo '{"benchmark":"frame","scenario":"puget","skipped":"../shared/data not present"}'
 fi
+"$BUILD/bench/bench-detail"                 # procedural detail: off / warped grid / regular grid
 "$BUILD/bench/bench-mappings"               # Table 1 of Trapp & Doellner: 0/1/4/16/27/64 mappings
 "$BUILD/bench/bench-import"                 # 4k DEM vs gdal_translate + gdaladdo (--sizes 4096,16384)
 "$BUILD/bench/hillshade/hillshade_bench"    # 4k DEM vs gdaldem hillshade (--with-16k)
@@ -35,3 +36,4 @@ fi
 /usr/bin/python3 "$ROOT/bench/kiosk/kiosk_bench.py" restart "$BUILD/geokiosk" "$ROOT"
 /usr/bin/python3 "$ROOT/bench/kiosk/kiosk_bench.py" scrape "$BUILD/geokiosk" "$ROOT"
 "$BUILD/bench/bench-wall" scenarios/demo/rainier.json   # swap barrier, 4/16 follower processes vs one node's frame
+"$BUILD/bench/bench-export" scenarios/demo/rainier.json --frames ${KIOSK_BENCH_FRAMES:-60}  # 1080p export vs PNG vs rendering alone

@@ -51,6 +51,8 @@ struct Terrain {
     TerrainReference reference = TerrainReference::Lod;
     std::int64_t cacheBytes = 512ll << 20;  ///< CPU tile cache budget
     std::int64_t gpuBytes = 256ll << 20;    ///< resident texture/mesh budget
+    /** @brief Procedural detail near the camera (decoration, labelled; docs/terrain.md §7). */
+    bool proceduralDetail = false;
     std::string pointer = "/terrain";
 };
 
@@ -92,11 +94,11 @@ struct Layer {
 
 /** @brief A named transfer function and where it came from. */
 struct TransferFunctionDef {
-    enum class Origin { Stops, Classes, Preset, ParaView, Gdal };
+    enum class Origin { Stops, Classes, Preset, ParaView, Gdal, File };
     std::string name;
     std::string label;  ///< human title for the legend ("Water depth"); may be empty
     Origin origin = Origin::Stops;
-    std::filesystem::path file;        ///< ParaView / gdal file, resolved
+    std::filesystem::path file;        ///< ParaView / gdal / colour-map file, resolved
     bool explicitDomain = false;       ///< the author fixed "domain"
     color::TransferFunction function;  ///< finalized: sorted, domain set
     std::string pointer;               ///< "/transferFunctions/depth"
@@ -275,6 +277,33 @@ struct Lighting {
     std::optional<double> latitude, longitude;  ///< degrees, north / east positive
 };
 
+/** @brief A chapter's override of one layer of the stack (briefing). */
+struct ChapterLayer {
+    std::string layer;              ///< id of a layer of the stack
+    std::optional<bool> enabled;    ///< false hides it for the chapter
+    std::optional<double> opacity;  ///< replaces the layer's operation opacity
+    std::string pointer;
+};
+
+/** @brief One chapter of a briefing: what data time it shows, from where, with which layers. */
+struct Chapter {
+    std::string title;
+    TimeSpec from, to;              ///< equal for a chapter showing a single time
+    bool span = false;              ///< given as "from"/"to" (else "time")
+    std::optional<double> duration; ///< playback seconds (default: the span at the clock rate, or 5)
+    std::string viewpoint;          ///< a named viewpoint, or
+    std::string path;               ///< a named camera path (tour); neither: the scenario camera
+    std::vector<ChapterLayer> layers;
+    std::string caption;            ///< may hold several lines ("\n")
+    bool pause = false;             ///< play holds at the chapter's end until "next"
+    std::string pointer;
+};
+
+/** @brief Ordered chapters played by `play` and exported back to back by `render`. */
+struct Briefing {
+    std::vector<Chapter> chapters;
+};
+
 /** @brief A whole scenario after includes were merged and every reference resolved. */
 /**
  * @brief The frame-rate governor of `play` (docs/animation.md): holds `targetFps` by raising
@@ -303,6 +332,7 @@ struct Scenario {
     Camera camera;
     Overlays overlays;
     Lighting lighting;
+    std::optional<Briefing> briefing;
     Governor governor;
 
     /** @brief The scenario file first, then every included or referenced file (hot reload). */

@@ -1,7 +1,9 @@
 #include "config/ScenarioReader.h"
 
+#include "config/BriefingReader.h"
 #include "config/DocumentLoader.h"
 #include "runtime/color/ColorImport.h"
+#include "runtime/color/ColorMapFiles.h"
 #include "runtime/core/Assert.h"
 #include "runtime/core/Strings.h"
 
@@ -27,18 +29,18 @@ const std::map<std::string, std::vector<std::string>>& propertyTable() {
         {"Scenario",
          {"$schema", "version", "include", "title", "caption", "stores", "terrain", "layers",
           "transferFunctions", "clock", "lenses", "projectiveMappings", "viewpoints", "cameraPaths",
-          "camera", "overlays", "lighting", "governor"}},
+          "camera", "overlays", "lighting", "governor", "briefing"}},
         {"Governor", {"targetFps", "maxTauFactor", "minRenderScale"}},
         {"Terrain",
          {"store", "elevation", "tauGeom", "tauTex", "verticalExaggeration", "reference", "cacheBytes",
-          "gpuBytes"}},
+          "gpuBytes", "proceduralDetail"}},
         {"Layer",
          {"id", "kind", "source", "transfer", "operation", "enabled", "interpolate", "nodataAs"}},
         {"Source", {"store", "layer", "sequence"}},
         {"Operation", {"type", "weight", "opacity", "visibility"}},
         {"TransferFunction",
          {"label", "units", "space", "domain", "stops", "classes", "opacity", "nodata", "below",
-          "above", "preset", "paraview", "gdal"}},
+          "above", "preset", "paraview", "gdal", "file"}},
         {"Stop", {"value", "color"}},
         {"ClassBreak", {"from", "color", "label"}},
         {"OpacityPoint", {"value", "opacity"}},
@@ -64,6 +66,11 @@ const std::map<std::string, std::vector<std::string>>& propertyTable() {
         {"SimpleOverlay", {"enabled", "position"}},
         {"Lighting", {"sunAzimuth", "sunAltitude", "ambient", "keys", "solar", "latitude", "longitude"}},
         {"LightingKey", {"time", "sunAzimuth", "sunAltitude"}},
+        {"Briefing", {"chapters"}},
+        {"Chapter",
+         {"title", "time", "from", "to", "duration", "viewpoint", "path", "layers", "caption",
+          "pause"}},
+        {"ChapterLayer", {"enabled", "opacity"}},
     };
     return table;
 }
@@ -566,6 +573,7 @@ private:
             assign(t.cacheBytes, readBytes(mC, *b, o.at("cacheBytes")));
         if (const json* b = o.get("gpuBytes"))
             assign(t.gpuBytes, readBytes(mC, *b, o.at("gpuBytes")));
+        assign(t.proceduralDetail, o.boolean("proceduralDetail"));
     }
 
     std::optional<SourceRef> source(const json& j, const std::string& ptr) {
@@ -660,7 +668,8 @@ private:
         def.name = name;
         def.pointer = ptr;
         assign(def.label, o.str("label"));
-        const std::vector<std::string> sources = {"stops", "classes", "preset", "paraview", "gdal"};
+        const std::vector<std::string> sources = {"stops",    "classes", "preset",
+                                                  "paraview", "gdal",    "file"};
         std::vector<std::string> given;
         for (const auto& s : sources)
             if (o.has(s)) given.push_back(s);
@@ -668,7 +677,8 @@ private:
             mC.error(
                 "SCENARIO_MISSING", ptr,
                 "transfer function " + quote(name) +
-                    " needs one of \"stops\", \"classes\", \"preset\", \"paraview\" or \"gdal\"");
+                    " needs one of \"stops\", \"classes\", \"preset\", \"paraview\", \"gdal\" or "
+                    "\"file\"");
             return std::nullopt;
         }
         if (given.size() > 1) {
@@ -756,18 +766,26 @@ private:
             tf = *r.value;
             if (domain) tf = tf.rescaled(domain->first, domain->second);
         } else {
-            def.origin = TransferFunctionDef::Origin::Gdal;
-            auto file = o.name("gdal");
+            // "gdal" names gdaldem / GRASS colour rules, "file" any colour-map file; both read
+            // the format from extension and content (a .cpt under "gdal" is read as GMT too).
+            def.origin = source == "gdal" ? TransferFunctionDef::Origin::Gdal
+                                          : TransferFunctionDef::Origin::File;
+            auto file = o.name(source);
             if (!file) return std::nullopt;
-            def.file = mC.resolve(o.at("gdal"), *file);
-            if (!fileExists(def.file, o.at("gdal"))) return std::nullopt;
-            auto r = color::importColorReliefFile(def.file, domain);
-            reemit(r.diagnostics, o.at("gdal"), def.file.filename().string() + ": ");
+            def.file = mC.resolve(o.at(source), *file);
+            if (!fileExists(def.file, o.at(source))) return std::nullopt;
+            color::ColorFileFormat format{};
+            auto r = color::importColorMapFile(def.file, domain, &format);
+            reemit(r.diagnostics, o.at(source), def.file.filename().string() + ": ");
             if (!r) return std::nullopt;
             tf = *r.value;
+            // Maps without data units (float lists, ParaView) are rescaled like presets.
+            if (domain && !color::hasDataUnits(format))
+                tf = tf.rescaled(domain->first, domain->second);
         }
         if (def.origin == TransferFunctionDef::Origin::ParaView ||
-            def.origin == TransferFunctionDef::Origin::Gdal)
+            def.origin == TransferFunctionDef::Origin::Gdal ||
+            def.origin == TransferFunctionDef::Origin::File)
             mFiles.push_back(def.file);
 
         tf.name = name;
@@ -1291,6 +1309,7 @@ Result<Scenario> build(LoadedDocument doc, Diagnostics diags,
         for (auto it = tfs->begin(); it != tfs->end(); ++it)
             reader.mDeclaredTransfers.push_back(it.key());
     reader.root(doc.value);
+    readBriefing(doc.value, s, diags);  // config/BriefingReader.cpp
     for (auto& f : reader.mFiles)
         if (std::find(s.sourceFiles.begin(), s.sourceFiles.end(), f) == s.sourceFiles.end())
             s.sourceFiles.push_back(f);

@@ -2,7 +2,8 @@
 // headless on llvmpipe and prints ONE JSON object: per size, frame time p50/p95/p99, fps,
 // triangles and tiles per frame, tiles drawn from ancestors, and the baselines measured in the
 // same run: the llvmpipe fill bound (a full-screen quad doing the same texture fetches per
-// pixel) and, unless --no-fullres, the same flight with the full-resolution mesh (tauGeom 0).
+// pixel) and, unless --no-fullres, the same flight at the full-resolution reference
+// (terrain.reference "full").
 // Also terrain draw calls per frame, the tile cache's resident bytes and the peak RSS before
 // the full-resolution baseline runs (that baseline dominates the process's final peak).
 //

@@ -16,6 +16,10 @@ bool Args::parse(const std::vector<std::string>& argv) {
     auto contains = [](const std::vector<std::string>& v, const std::string& s) {
         return std::find(v.begin(), v.end(), s) != v.end();
     };
+    if (wantsHelp(argv)) {
+        mHelp = true;
+        return true;
+    }
     for (std::size_t i = 0; i < argv.size(); ++i) {
         std::string a = argv[i];
         if (a.size() > 2 && a.rfind("--", 0) == 0) {

@@ -1,5 +1,7 @@
 #include "runtime/app/ImportCommand.h"
 
+#include "runtime/app/Args.h"
+
 #include "runtime/core/Diagnostics.h"
 #include "runtime/core/ExitCode.h"
 #include "runtime/core/Strings.h"
@@ -48,10 +50,11 @@ std::optional<double> number(const std::string& s) {
 }  // namespace
 
 int runImportCommand(const std::vector<std::string>& args) {
-    if (args.empty() || args[0] == "--help" || args[0] == "-h") {
-        std::fputs(kUsage, args.empty() ? stderr : stdout);
-        return args.empty() ? kExitUsage : kExitOk;
+    if (args.empty()) {
+        std::fputs(kUsage, stderr);
+        return kExitUsage;
     }
+    if (wantsHelp(args)) return showHelp(kUsage);
     const std::string kind = args[0];
     const std::vector<std::string> kinds = {"elevation", "imagery", "sequence"};
     if (kind != "elevation" && kind != "imagery" && kind != "sequence") {

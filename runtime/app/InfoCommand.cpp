@@ -1,5 +1,7 @@
 #include "runtime/app/InfoCommand.h"
 
+#include "runtime/app/Args.h"
+
 #include "runtime/core/ExitCode.h"
 #include "runtime/core/TimeParse.h"
 #include "runtime/io/StoreReader.h"
@@ -28,6 +30,7 @@ const char* kindName(io::LayerKind k) {
 }  // namespace
 
 int runInfoCommand(const std::vector<std::string>& args) {
+    if (wantsHelp(args)) return showHelp("usage: geokiosk info STORE [--json]\n");
     std::string path;
     bool json = false;
     for (const auto& a : args) {

@@ -84,15 +84,19 @@ KioskHooks::Requests KioskHooks::applyControl(anim::ScenarioClock& clock) {
         switch (c.action) {
             case service::ControlAction::Pause:
                 clock.pause();
+                r.clock = true;
                 break;
             case service::ControlAction::Play:
                 clock.resume();
+                r.clock = true;
                 break;
             case service::ControlAction::Seek:
                 clock.seek(c.time);
+                r.clock = true;
                 break;
             case service::ControlAction::Rate:
                 clock.setRate(c.rate);
+                r.clock = true;
                 break;
             case service::ControlAction::Next:
                 r.playlistStep = mPendingStep = 1;
@@ -174,7 +178,7 @@ std::unique_ptr<Session> KioskHooks::nextSession(const anim::ScenarioClock& cloc
     mStores.poll(now);
     if (mStores.swapReady() && mAtStepBoundary) {
         // A new model run: the same scenario on the replaced store, from the same data time.
-        auto next = mPlaylist ? mPlaylist->reopen(caps) : Session::open(mFile, caps);
+        auto next = reopen(caps);
         noteReload(next.ok());
         mWatched = nullptr;  // watch the new files (also after a failure: no retry loop)
         if (!next) {
@@ -197,6 +201,10 @@ std::unique_ptr<Session> KioskHooks::nextSession(const anim::ScenarioClock& cloc
     // Nothing else can play: keep the picture and try again in a while, not every frame.
     if (!s) mRetryAt = now + kRetrySeconds;
     return s;
+}
+
+Result<std::unique_ptr<Session>> KioskHooks::reopen(const gl::Caps& caps) {
+    return mPlaylist ? mPlaylist->reopen(caps) : Session::open(mFile, caps);
 }
 
 std::filesystem::path KioskHooks::currentScenario() const {

@@ -45,6 +45,9 @@ public:
     std::unique_ptr<Session> nextSession(const anim::ScenarioClock& clock, const gl::Caps& caps);
     /** @brief The last switch re-opened the same scenario (store swap): keep the data time. */
     bool keepsDataTime() const noexcept { return mKeepTime; }
+    /** @brief The scenario on screen opened again (hot reload, control, store swap), with the
+     * kiosk file's budgets. */
+    Result<std::unique_ptr<Session>> reopen(const gl::Caps& caps);
     /** @brief Scenario file on screen (the one hot reload watches). */
     std::filesystem::path currentScenario() const;
     /** @brief Fade curtain for this frame (0 without a playlist fade). */
@@ -54,6 +57,7 @@ public:
     struct Requests {
         bool reload = false;   ///< re-open the scenario now
         int playlistStep = 0;  ///< +1 next entry, -1 previous
+        bool clock = false;    ///< pause/play/seek/rate acted on the clock
     };
     /** @brief Take the queued control commands; pause/play/seek/rate act on `clock` here. */
     Requests applyControl(anim::ScenarioClock& clock);

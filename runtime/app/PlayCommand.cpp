@@ -1,17 +1,10 @@
 #include "runtime/app/PlayCommand.h"
 
-#include <chrono>
-#include <algorithm>
-#include <cmath>
-#include <optional>
-#include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <thread>
-
+#include "runtime/anim/BriefingPlayer.h"
 #include "runtime/anim/FrameGovernor.h"
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
+#include "runtime/app/BriefingControl.h"
 #include "runtime/app/KioskHooks.h"
 #include "runtime/app/Report.h"
 #include "runtime/app/Session.h"
@@ -24,6 +17,15 @@
 #include "runtime/gl/Context.h"
 #include "runtime/gl/RenderTarget.h"
 #include "runtime/platform/Display.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <thread>
 
 namespace kiosk::app {
 namespace {
@@ -63,25 +65,34 @@ private:
     long mFrames = -1;
 };
 
+constexpr const char* kUsage =
+    "usage: geokiosk play SCENARIO [--display "
+    "auto|kms|x11|wayland|headless] [--size WxH] [--windowed] [--max-fps N] "
+    "[--frames N] [--connector NAME] [--drm-device PATH] [--listen HOST:PORT] "
+    "[--token-file FILE] [--target-fps N] [--stats STATS.json] "
+    "[--wall WALL.json --screen ID [--wall-log LOG.jsonl]]\n";
+
 int usage(const std::string& message) {
-    std::fprintf(stderr,
-                 "geokiosk play: %s\nusage: geokiosk play SCENARIO [--display "
-                 "auto|kms|x11|wayland|headless] [--size WxH] [--windowed] [--max-fps N] "
-                 "[--frames N] [--connector NAME] [--drm-device PATH] [--listen HOST:PORT] "
-                 "[--token-file FILE] [--target-fps N] [--stats STATS.json] [--wall WALL.json --screen ID "
-                 "[--wall-log LOG.jsonl]]\n",
-                 message.c_str());
+    std::fprintf(stderr, "geokiosk play: %s\n%s", message.c_str(), kUsage);
     return kExitUsage;
 }
 
 /** Modification stamps of the scenario and everything it includes. */
-std::vector<std::filesystem::file_time_type> stamps(const std::vector<std::filesystem::path>& files) {
+std::vector<std::filesystem::file_time_type> stamps(
+    const std::vector<std::filesystem::path>& files) {
     std::vector<std::filesystem::file_time_type> out;
     for (const auto& f : files) {
         std::error_code ec;
         out.push_back(std::filesystem::last_write_time(f, ec));
     }
     return out;
+}
+
+/** A briefing plays its chapters instead of the clock (and starts on its first chapter). */
+std::optional<anim::BriefingPlayer> makeBriefing(Session& s) {
+    if (!s.scenario().briefing) return std::nullopt;
+    s.setChapter(0);
+    return anim::BriefingPlayer(s.chapterSpans());
 }
 
 anim::ScenarioClock makeClock(const Session& s) {
@@ -102,13 +113,14 @@ anim::FrameGovernor makeGovernor(const Session& s, std::optional<double> targetF
 }  // namespace
 
 int runPlayCommand(const std::vector<std::string>& argv) {
-    std::vector<std::string> valueOptions = {"display",   "size",      "max-fps",
-                                             "frames",    "connector", "drm-device",
-                                             "target-fps", "stats"};
+    std::vector<std::string> valueOptions = {"display",   "size",       "max-fps",    "frames",
+                                             "connector", "drm-device", "target-fps", "stats"};
     for (const auto& o : KioskHooks::optionNames()) valueOptions.push_back(o);
-    for (const char* o : {"wall", "screen", "wall-log"}) valueOptions.push_back(o);  // display walls
+    for (const char* o : {"wall", "screen", "wall-log"})
+        valueOptions.push_back(o);  // display walls
     Args args("play", valueOptions, {"windowed"});
     if (!args.parse(argv)) return usage(args.error());
+    if (args.help()) return showHelp(kUsage);
     if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
     std::filesystem::path scenarioPath = args.positionals()[0];
     platform::DisplayOptions dopts;
@@ -133,7 +145,8 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     if (wallExit >= 0) return wallExit;
     if (!wallScreen && args.value("wall-log")) return usage("--wall-log needs --wall");
     if (wallScreen) {
-        if (args.value("size")) return usage("with --wall the screen's size comes from the wall file; drop --size");
+        if (args.value("size"))
+            return usage("with --wall the screen's size comes from the wall file; drop --size");
         dopts.width = wallScreen->width();
         dopts.height = wallScreen->height();
     }
@@ -145,7 +158,8 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     if (auto f = args.value("max-fps")) {
         char* end = nullptr;
         maxFps = std::strtod(f->c_str(), &end);
-        if (end == f->c_str() || *end || !(maxFps > 0)) return usage("--max-fps wants a positive number");
+        if (end == f->c_str() || *end || !(maxFps > 0))
+            return usage("--max-fps wants a positive number");
     }
     std::optional<double> targetFps;
     if (auto f = args.value("target-fps")) {
@@ -158,7 +172,8 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     if (auto f = args.value("frames")) {
         char* end = nullptr;
         frameLimit = std::strtol(f->c_str(), &end, 10);
-        if (end == f->c_str() || *end || frameLimit <= 0) return usage("--frames wants a positive integer");
+        if (end == f->c_str() || *end || frameLimit <= 0)
+            return usage("--frames wants a positive integer");
     }
     std::error_code ec;
     if (!std::filesystem::exists(scenarioPath, ec)) {
@@ -170,6 +185,8 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     int kioskExit = kExitOk;
     auto kiosk = KioskHooks::create(args, scenarioPath, kioskExit);
     if (!kiosk) return kioskExit;
+    // From here SIGTERM means "stop cleanly" (exit 0), also during a slow display or store open.
+    installStopSignals();
 
     auto display = platform::createDisplay(dopts);
     if (!display) {
@@ -209,9 +226,9 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         }
         wallNode = std::move(*node.value);
     }
-    installStopSignals();
     RealClock wall;
     anim::ScenarioClock clock = makeClock(*session);
+    std::optional<anim::BriefingPlayer> briefing = makeBriefing(*session);
     anim::FrameGovernor governor = makeGovernor(*session, targetFps);
     TestFrameCost testCost;
     std::optional<FrameStats> stats;
@@ -227,13 +244,18 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         if (input.quitRequested) break;
         kiosk->stallWhileTestFileExists();
         // Remote control (pause/play/seek/rate act on the clock; reload re-opens at the poll).
-        if (kiosk->applyControl(clock).reload) watchedStamps.clear();
+        const KioskHooks::Requests control = kiosk->applyControl(clock);
+        if (control.reload) watchedStamps.clear();
+        // A remote pause/play/seek/rate means the operator drives the clock: the briefing's
+        // chapters would otherwise keep choosing the time and the command would have no effect.
+        if (control.clock) briefing.reset();
         // Playlists: the next entry when this one is done (or next/previous was asked for);
         // a store replaced on disk: the same scenario re-opened on it at a step boundary.
         if (auto next = kiosk->nextSession(clock, *caps)) {
             session = std::move(next);
             const double was = clock.current();
             clock = makeClock(*session);
+            briefing = makeBriefing(*session);
             governor = makeGovernor(*session, targetFps);
             if (kiosk->keepsDataTime()) clock.seek(was);
             scenarioPath = kiosk->currentScenario();
@@ -251,10 +273,11 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             auto current = stamps(watched);
             if (current != watchedStamps) {
                 watchedStamps = current;
-                auto next = Session::open(scenarioPath, *caps);
+                auto next = kiosk->reopen(*caps);  // same file, with the kiosk's budgets
                 if (next) {
                     session = std::move(*next.value);
                     clock = makeClock(*session);
+                    briefing = makeBriefing(*session);
                     governor = makeGovernor(*session, targetFps);
                     watched = session->scenario().sourceFiles;
                     watchedStamps = stamps(watched);
@@ -272,14 +295,28 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             }
         }
 
-        if (input.togglePause) clock.paused() ? clock.resume() : clock.pause();
-        if (input.step != 0) {
-            const auto keys = session->terrain().sequenceKeyTimes();
-            input.step > 0 ? clock.stepToNextKey(keys) : clock.stepToPreviousKey(keys);
+        const int chapterSteps = takeChapterSteps();  // the control endpoint's next/previous
+        if (briefing) {
+            // In a briefing space resumes from a chapter's pause, . and , go to the next and
+            // previous chapter.
+            if (input.togglePause) briefing->togglePause();
+            for (int k = input.step + chapterSteps; k != 0; k += k > 0 ? -1 : 1)
+                k > 0 ? briefing->next() : briefing->previous();
+        } else {
+            if (input.togglePause) clock.paused() ? clock.resume() : clock.pause();
+            if (input.step != 0) {
+                const auto keys = session->terrain().sequenceKeyTimes();
+                input.step > 0 ? clock.stepToNextKey(keys) : clock.stepToPreviousKey(keys);
+            }
         }
         // On a wall the clock waits for the step to be resident on every node, not just here.
-        const bool ready = wallNode ? wallNode->stepResident() : !session->terrain().frameInfo().holdingSequence;
-        double t = clock.advance(dt, ready).time;
+        const bool ready =
+            wallNode ? wallNode->stepResident() : !session->terrain().frameInfo().holdingSequence;
+        double t = briefing ? briefing->advance(dt, ready) : clock.advance(dt, ready).time;
+        // A wall's followers show the leader's chapter (below), not their own briefing's.
+        if (briefing && briefing->chapter() != session->chapterIndex() &&
+            (!wallNode || wallNode->isLeader()))
+            session->setChapter(briefing->chapter());
         auto vp = session->viewpointAt(t, "");
         // Interactive control (when the scenario allows it): the first navigation key takes the
         // camera off its path from where it is; h / Home gives it back.
@@ -294,28 +331,47 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             }
         }
         input.clearRequests();
+        // What the clock plays (a briefing: its chapter's span): sizes the sequences' prefetch.
+        scene::Playback playback = scene::playbackOf(clock);
+        if (briefing) {
+            const anim::ChapterSpan& span =
+                session->chapterSpans()[std::size_t(briefing->chapter())];
+            playback = {};
+            playback.rate = briefing->atPause() || briefing->userPaused()
+                                ? 0.0
+                                : (span.to - span.from) / span.seconds;
+            playback.start = span.from;
+            playback.end = span.to;
+        }
         if (wallNode) {  // followers draw the leader's frame; nothing new: not a frame
-            if (!wallNode->beginFrame(*session, t, vp ? *vp : session->terrain().overviewViewpoint(), clock, 0.1)) {
+            if (!wallNode->beginFrame(*session, t,
+                                      vp ? *vp : session->terrain().overviewViewpoint(), playback,
+                                      0.1)) {
                 if (wallNode->stopped()) break;
                 --frame;
                 continue;
             }
             t = wallNode->dataTime();
             vp = wallNode->viewpoint();
+            // The leader's briefing chapter: its layer overrides and caption on every screen.
+            if (!wallNode->isLeader() && wallNode->chapter() != session->chapterIndex())
+                session->setChapter(wallNode->chapter());
             session->setOverlayLayout(wallNode->screen().overlayLayout());
             session->terrain().setStepGate(wallNode->stepTime());
         }
         const int w = dpy.width(), h = dpy.height();
-        math::Camera cam = vp ? makeCamera(*vp, session->terrain().bounds(), w, h,
-                                           session->scenario().camera.fovY)
-                              : makeCamera(session->terrain().overviewViewpoint(),
-                                           session->terrain().bounds(), w, h, 45.0);
-        if (wallNode && vp) cam = wallNode->screen().camera(*vp, session->terrain().bounds(), session->scenario().camera.fovY);
+        math::Camera cam =
+            vp ? makeCamera(*vp, session->terrain().bounds(), w, h, session->scenario().camera.fovY)
+               : makeCamera(session->terrain().overviewViewpoint(), session->terrain().bounds(), w,
+                            h, 45.0);
+        if (wallNode && vp)
+            cam = wallNode->screen().camera(*vp, session->terrain().bounds(),
+                                            session->scenario().camera.fovY);
         if (offscreen)
             offscreen->bind();
         else
             glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        session->setPlayback(wallNode ? wallNode->playback() : scene::playbackOf(clock));
+        session->setPlayback(wallNode ? wallNode->playback() : playback);
         if (!wallNode && governor.state().active) {  // walls: every screen at the same LOD
             session->terrain().setTau(governor.state().tauGeom, governor.state().tauTex);
             session->setRenderScale(governor.state().renderScale);
@@ -324,10 +380,14 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         // Camera paths are known in advance: ask for the tiles of the view two seconds ahead.
         if (wallNode) {  // from the leader's playback state, through this screen's frustum
             const scene::Playback p = wallNode->playback();
-            if (auto ahead = session->viewpointAt(t + (p.paused ? 0.0 : p.rate * kPrefetchSeconds), ""))
-                session->terrain().prefetch(wallNode->screen().camera(*ahead, session->terrain().bounds(),
-                                                                      session->scenario().camera.fovY));
-        } else if (auto ahead = session->viewpointAt(clock.predict(kPrefetchSeconds), ""))
+            const double aheadTime = t + (p.paused ? 0.0 : p.rate * kPrefetchSeconds);
+            if (auto ahead = session->viewpointAt(aheadTime, ""))
+                session->terrain().prefetch(wallNode->screen().camera(
+                    *ahead, session->terrain().bounds(), session->scenario().camera.fovY));
+        } else if (auto ahead =
+                       session->viewpointAt(briefing ? briefing->timeAhead(kPrefetchSeconds)
+                                                     : clock.predict(kPrefetchSeconds),
+                                            ""))
             session->terrain().prefetch(makeCamera(*ahead, session->terrain().bounds(), w, h,
                                                    session->scenario().camera.fovY));
         // Swap barrier: every node swaps this frame together (or the leader's deadline passes).
@@ -335,6 +395,9 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             --frame;  // the leader moved on or went silent: keep the last frame on screen
             continue;
         }
+        // The leader's first frame waits up to 10 s for the followers to join: that wait is
+        // start-up, not playback, so the next frame's dt starts after it (no data-time jump).
+        if (wallNode && wallNode->isLeader() && frame == 0) last = wall.now();
         if (!dpy.swapBuffers()) {
             KIOSK_LOG_ERROR(kTag, "presenting the frame failed; stopping");
             return kExitCannotRun;

@@ -6,16 +6,18 @@
 #include <filesystem>
 #include <thread>
 
+#include "runtime/anim/BriefingTimeline.h"
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
 #include "runtime/app/Report.h"
 #include "runtime/app/FrameStats.h"
-#include "runtime/app/ImageOutput.h"
+#include "runtime/app/FrameOutput.h"
 #include "runtime/app/Session.h"
 #include "runtime/app/WallScreen.h"
 #include "runtime/core/Clock.h"
 #include "runtime/core/ExitCode.h"
 #include "runtime/core/Log.h"
+#include "runtime/core/Progress.h"
 #include "runtime/core/Strings.h"
 #include "runtime/core/TimeParse.h"
 #include "runtime/gl/Context.h"
@@ -26,37 +28,59 @@ namespace kiosk::app {
 namespace {
 
 constexpr const char* kTag = "render";
+/** A chapter that pauses in `play` holds its last frame this long in an export. */
+constexpr double kPauseHoldSeconds = 2.0;
 /** How long one frame may wait for its tiles before it is drawn with what is resident. */
 constexpr double kSettleTimeoutSeconds = 120.0;
 
+constexpr const char* kUsage = "usage: geokiosk render SCENARIO --out OUT [--time T | "
+                               "--from T0 --to T1 --fps N] [--size WxH] [--viewpoint NAME] "
+                               "[--stats STATS.json] [--reference lod|full] [--crf N] [--quiet] "
+                               "[--wall WALL.json --screen ID]\n"
+                               "  OUT: x.png | dir/ | x.mp4 (H.264) | x.mkv (FFV1 lossless) | "
+                               "x.webm (VP9)\n";
+
 int usage(const std::string& message) {
-    std::fprintf(stderr, "geokiosk render: %s\nusage: geokiosk render SCENARIO --out OUT [--time T | "
-                         "--from T0 --to T1 --fps N] [--size WxH] [--viewpoint NAME] "
-                         "[--stats STATS.json] [--reference lod|full] [--wall WALL.json --screen ID]\n",
-                 message.c_str());
+    std::fprintf(stderr, "geokiosk render: %s\n%s", message.c_str(), kUsage);
     return kExitUsage;
 }
 
 }  // namespace
 
 int runRenderCommand(const std::vector<std::string>& argv) {
-    Args args("render", {"out", "time", "from", "to", "fps", "size", "viewpoint", "stats", "reference", "wall", "screen"},
-              {});
+    Args args("render",
+              {"out", "time", "from", "to", "fps", "size", "viewpoint", "stats", "reference", "crf",
+               "wall", "screen"},
+              {"quiet"});
     if (!args.parse(argv)) return usage(args.error());
+    if (args.help()) return showHelp(kUsage);
     if (args.positionals().size() != 1) return usage("expected exactly one SCENARIO");
     const std::filesystem::path scenarioPath = args.positionals()[0];
     const auto out = args.value("out");
-    if (!out) return usage("--out is required");
-    const bool toDir = out->back() == '/' || std::filesystem::is_directory(*out);
-    const std::string ext = std::filesystem::path(*out).extension().string();
-    if (!toDir && ext == ".mp4")
-        return usage("video export (.mp4) is not available in this version; write frames to a dir/");
-    if (!toDir && ext != ".png") return usage("--out must end in .png (one frame) or / (a folder)");
+    if (!out || out->empty()) return usage("--out is required");
+    const auto outKind = FrameOutput::kindOf(*out);
+    if (!outKind)
+        return usage("--out must end in .png (one frame), / (a folder), .mp4, .mkv or .webm");
+    const bool toDir = *outKind == FrameOutput::Kind::PngFolder;
+    const bool toVideo = *outKind == FrameOutput::Kind::Video;
     const bool range = args.value("from") || args.value("to");
     if (range && args.value("time")) return usage("--time and --from/--to are exclusive");
     if (range && (!args.value("from") || !args.value("to")))
         return usage("--from and --to go together");
-    if (range && !toDir) return usage("--from/--to write many frames: --out must be a folder/");
+    if (range && !toDir && !toVideo)
+        return usage("--from/--to write many frames: --out must be a folder/ or a video");
+    std::optional<int> crf;
+    if (auto c = args.value("crf")) {
+        const auto format = video::videoFormatForPath(*out);
+        if (!format || *format == video::VideoFormat::Ffv1Mkv)
+            return usage("--crf applies to .mp4 and .webm (FFV1 .mkv is lossless)");
+        char* end = nullptr;
+        const long v = std::strtol(c->c_str(), &end, 10);
+        if (end == c->c_str() || *end || v < 0 || v > video::maxCrf(*format))
+            return usage("--crf wants an integer 0.." + std::to_string(video::maxCrf(*format)) +
+                         ", got '" + *c + "'");
+        crf = int(v);
+    }
     int width = 1280, height = 720;
     if (auto size = args.value("size")) {
         auto wh = parseSize(*size);
@@ -69,11 +93,18 @@ int runRenderCommand(const std::vector<std::string>& argv) {
     const std::optional<WallScreen> wallScreen = wallScreenFromArgs(args, wallExit);
     if (wallExit >= 0) return wallExit;
     if (wallScreen) {
-        if (args.value("size")) return usage("with --wall the screen's size comes from the wall file; drop --size");
+        if (args.value("size"))
+            return usage("with --wall the screen's size comes from the wall file; drop --size");
         width = wallScreen->width();
         height = wallScreen->height();
     }
-    double fps = 1.0;
+    if (const auto format = video::videoFormatForPath(*out);
+        format && *format != video::VideoFormat::Ffv1Mkv && (width % 2 || height % 2))
+        return usage(std::string(video::videoFormatName(*format)) +
+                     " is 4:2:0 and needs an even --size, got " + std::to_string(width) + "x" +
+                     std::to_string(height));
+    // A video plays at --fps, so its default is a smooth one; PNG series keep one per second.
+    double fps = toVideo ? 30.0 : 1.0;
     if (auto f = args.value("fps")) {
         char* end = nullptr;
         fps = std::strtod(f->c_str(), &end);
@@ -128,6 +159,8 @@ int runRenderCommand(const std::vector<std::string>& argv) {
     Session& s = **session;
     if (wallScreen) s.setOverlayLayout(wallScreen->overlayLayout());
     std::vector<double> times;
+    std::vector<anim::BriefingFrame> frames;  // briefing export only: each frame's chapter
+    std::vector<anim::ChapterFrames> chapterFrames;
     if (range) {
         const double t0 = from->resolve(s.startTime()), t1 = to->resolve(s.startTime());
         if (t1 < t0) return usage("--to is before --from");
@@ -144,23 +177,63 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         playback.start = t0;
         playback.end = t1;
         s.setPlayback(playback);
+    } else if (!at && (toDir || toVideo) && s.scenario().briefing) {
+        // The briefing: its chapters back to back, each with its camera, layers and caption.
+        frames = anim::briefingFrames(s.chapterSpans(), fps, kPauseHoldSeconds, &chapterFrames);
+        for (const auto& f : frames) times.push_back(f.time);
     } else {
         times.push_back(at ? at->resolve(s.startTime()) : s.startTime());
     }
     if (toDir) std::filesystem::create_directories(*out, ec);
+    std::optional<FrameOutput> output;
+    if (toVideo) {
+        video::VideoOptions vo;
+        vo.path = *out;
+        vo.format = *video::videoFormatForPath(*out);
+        vo.width = width;
+        vo.height = height;
+        vo.fps = fps;
+        vo.crf = crf;
+        for (std::size_t c = 0; c < chapterFrames.size(); ++c)
+            vo.chapters.push_back({s.scenario().briefing->chapters[c].title,
+                                   double(chapterFrames[c].first) / fps,
+                                   double(chapterFrames[c].end) / fps});
+        auto opened = FrameOutput::video(vo);
+        if (!opened) {
+            printDiagnostics(opened.diagnostics);
+            return opened.diagnostics.has("EXPORT_CODEC") ? kExitCannotRun : kExitBadInput;
+        }
+        output.emplace(std::move(*opened.value));
+    } else {
+        output.emplace(toDir ? FrameOutput::folder(*out) : FrameOutput::png(*out));
+    }
 
+    // A bar on a terminal, a line per 10 % in logs; one-frame renders need neither.
+    Progress progress(args.flag("quiet") || times.size() < 2, "frames");
+    progress.begin("render " + std::filesystem::path(*out).filename().string(),
+                   std::int64_t(times.size()));
     FrameStats stats(times.size());
     RealClock clock;
     const std::string viewpoint = args.value("viewpoint").value_or("");
     for (std::size_t i = 0; i < times.size(); ++i) {
+        if (!frames.empty() && frames[i].chapter != s.chapterIndex()) {
+            s.setChapter(frames[i].chapter);
+            const anim::ChapterSpan& span = s.chapterSpans()[std::size_t(frames[i].chapter)];
+            scene::Playback playback;  // prefetch along this chapter's span
+            playback.rate = (span.to - span.from) / span.seconds;
+            playback.start = span.from;
+            playback.end = span.to;
+            s.setPlayback(playback);
+        }
         auto vp = s.viewpointAt(times[i], viewpoint);
         if (!vp) {
             printDiagnostics(vp.diagnostics);
             return kExitBadInput;
         }
-        const math::Camera cam = wallScreen ? wallScreen->camera(*vp, s.terrain().bounds(), s.scenario().camera.fovY)
-                                            : makeCamera(*vp, s.terrain().bounds(), width, height,
-                                                         s.scenario().camera.fovY);
+        const math::Camera cam =
+            wallScreen
+                ? wallScreen->camera(*vp, s.terrain().bounds(), s.scenario().camera.fovY)
+                : makeCamera(*vp, s.terrain().bounds(), width, height, s.scenario().camera.fovY);
         target->bind();
         // Deterministic output: redraw until every tile of this view (and both frames of each
         // sequence pair) is resident, then keep that last, complete frame.
@@ -179,16 +252,18 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         rec.frameMs = (clock.now() - t0) * 1000.0;
         stats.add(rec);
         const gl::Image img = target->readColor();
-        char name[32];
-        std::snprintf(name, sizeof name, "%06zu.png", i + 1);
-        const std::filesystem::path file = toDir ? std::filesystem::path(*out) / name
-                                                 : std::filesystem::path(*out);
         Diagnostics d;
-        if (!writePng(file, img, d)) {
+        if (!output->write(img, d)) {
             printDiagnostics(d);
             return kExitBadInput;
         }
+        progress.advance();
     }
+    if (Diagnostics d; !output->finish(d)) {
+        printDiagnostics(d);
+        return kExitBadInput;
+    }
+    progress.finish();
     if (auto statsPath = args.value("stats")) {
         Diagnostics d;
         if (!stats.write(*statsPath, d)) {
@@ -196,7 +271,8 @@ int runRenderCommand(const std::vector<std::string>& argv) {
             return kExitBadInput;
         }
     }
-    std::fprintf(stderr, "render: wrote %zu frame%s to %s\n", times.size(), times.size() == 1 ? "" : "s",
+    if (!args.flag("quiet"))
+        std::fprintf(stderr, "render: wrote %zu frame%s to %s\n", times.size(), times.size() == 1 ? "" : "s",
                  out->c_str());
     for (const auto& st : s.terrain().layerStatus())
         if (st.state != scene::LayerState::Ready)

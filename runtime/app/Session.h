@@ -2,17 +2,20 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "config/Scenario.h"
+#include "runtime/anim/BriefingTimeline.h"
 #include "runtime/anim/CameraPath.h"
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/anim/TimeLabel.h"
 #include "runtime/app/FrameStats.h"
 #include "runtime/core/Result.h"
 #include "runtime/gl/Context.h"
+#include "runtime/render/OverlayLayout.h"
 #include "runtime/gl/RenderTarget.h"
 #include "runtime/render/OverlayRenderer.h"
 #include "runtime/scene/TerrainScene.h"
@@ -64,15 +67,28 @@ public:
      * @brief Display walls (runtime/app/WallScreen): which of the legend, time label and title
      * this output draws, each laid out in its own box (pixels, top-left origin; w == 0: the
      * whole output), so no overlay straddles a bezel. nullopt: all, over the whole output.
+     * `corner`: the box's anchor corner (a canvas anchor), in place of the scenario's position.
      */
     struct OverlayBox {
         bool shown = true;
         int x = 0, y = 0, w = 0, h = 0;
+        std::optional<config::Corner> corner;
     };
     struct OverlayLayout {
         OverlayBox legend, timeLabel, title;
     };
     void setOverlayLayout(std::optional<OverlayLayout> layout) { mOverlayLayout = layout; }
+
+    /**
+     * @brief Briefing chapter `index` on (-1: none): its layer overrides apply at once, its
+     * camera (viewpoint or path) replaces the scenario's in viewpointAt(), its caption shows.
+     * (SessionBriefing.cpp)
+     */
+    void setChapter(int index);
+    const config::Chapter* chapter() const noexcept;
+    int chapterIndex() const noexcept { return mChapter; }
+    /** @brief The briefing's chapters in numbers (data spans, playback seconds, pauses). */
+    const std::vector<anim::ChapterSpan>& chapterSpans() const noexcept { return mChapterSpans; }
 
     /** @brief Update tiles for the view and draw terrain + overlays into the bound framebuffer. */
     FrameRecord drawFrame(const math::Camera& camera, double time, int width, int height);
@@ -88,6 +104,12 @@ private:
     Session() = default;
     void drawOverlays(double time, int width, int height);
     void drawLegend(const config::LegendOverlay& legend, int width, int height);
+    void drawCaption(int width, int height);
+    void wrapCaption(const std::string& caption, float maxText);
+    std::optional<anim::CameraPath> buildPath(const std::string& name) const;
+    void setupBriefing();
+    std::vector<anim::ChapterSpan> computeChapterSpans() const;
+    std::optional<math::Viewpoint> chapterViewpoint(double time) const;
     bool bindScaledTarget(int width, int height, int& outFbo);
     /** @brief drawOverlays() once per wall overlay box (SessionWall.cpp). */
     void drawWallOverlays(double time, int width, int height);
@@ -103,12 +125,20 @@ private:
      * follows (0: the height it is given); set per box by drawWallOverlays(). */
     unsigned mOverlayOnly = ~0u;
     int mOverlayFontHeight = 0;
+    std::optional<config::Corner> mOverlayCorner;  ///< replaces the scenario's position (wall box)
     static constexpr unsigned kOverlayLegend = 1, kOverlayTimeLabel = 2, kOverlayTitle = 4,
                               kOverlayStatus = 8;
     anim::CameraPath mPath;
     anim::TimeZone mZone;
     double mStart = 0, mEnd = 0;
     scene::Playback mPlayback;
+    render::OverlayLayout mLayout;
+    std::map<std::string, gl::Texture> mLegendLuts;  ///< mapping transfer functions' legends
+    std::vector<std::string> mCaptionLines;          ///< reused by drawCaption
+    std::map<std::string, anim::CameraPath> mChapterPaths;
+    std::vector<anim::ChapterSpan> mChapterSpans;
+    int mChapter = -1;
+    int mCaptionChapter = -1, mCaptionWidth = 0, mCaptionFontPx = 0;  ///< what mCaptionLines wraps
     double mRenderScale = 1.0;
     std::optional<gl::RenderTarget> mScaled;  ///< terrain target while mRenderScale < 1
 };

@@ -18,10 +18,12 @@ void Session::drawWallOverlays(double time, int width, int height) {
         const int w = box->w > 0 ? box->w : width, h = box->w > 0 ? box->h : height;
         glViewport(box->x, height - box->y - h, w, h);
         mOverlayOnly = bit;
+        mOverlayCorner = box->corner;
         drawOverlays(time, w, h);
     }
     glViewport(0, 0, width, height);
     mOverlayOnly = ~0u;
+    mOverlayCorner.reset();
     mOverlayFontHeight = 0;
 }
 

@@ -11,12 +11,13 @@
 namespace kiosk::app {
 namespace {
 
+constexpr const char* kUsage =
+    "usage: geokiosk import topographic --store STORE "
+    "[--elevation LAYER] [--name NAME] [--azimuth DEG] [--altitude DEG] [--z-factor F] "
+    "[--variant default|multidirectional|combined] [--shadows] [--normals] [--quiet]\n";
+
 int usage(const std::string& message) {
-    std::fprintf(stderr,
-                 "geokiosk import topographic: %s\nusage: geokiosk import topographic --store STORE "
-                 "[--elevation LAYER] [--name NAME] [--azimuth DEG] [--altitude DEG] [--z-factor F] "
-                 "[--variant default|multidirectional|combined] [--shadows] [--normals] [--quiet]\n",
-                 message.c_str());
+    std::fprintf(stderr, "geokiosk import topographic: %s\n%s", message.c_str(), kUsage);
     return kExitUsage;
 }
 
@@ -34,6 +35,7 @@ int runImportTopographic(const std::vector<std::string>& argv) {
               {"store", "elevation", "name", "azimuth", "altitude", "z-factor", "variant", "threads"},
               {"shadows", "normals", "quiet"});
     if (!args.parse(argv)) return usage(args.error());
+    if (args.help()) return showHelp(kUsage);
     if (!args.positionals().empty()) return usage("unexpected argument '" + args.positionals()[0] + "'");
     import::TopographicOptions o;
     if (!args.value("store")) return usage("--store STORE is required");

@@ -107,7 +107,7 @@ void WallNode::drain() {
 }
 
 bool WallNode::beginFrame(Session& session, double dataTime, const math::Viewpoint& vp,
-                          const anim::ScenarioClock& clock, double maxWait) {
+                          const scene::Playback& p, double maxWait) {
     if (isLeader()) {
         if (!mHaveStep) mStepTime = dataTime, mHaveStep = true;
         mState = {};
@@ -119,13 +119,13 @@ bool WallNode::beginFrame(Session& session, double dataTime, const math::Viewpoi
         mState.scenarioId = session.scenario().sourceFiles.empty()
                                 ? std::string()
                                 : session.scenario().sourceFiles.front().filename().string();
-        const scene::Playback p = scene::playbackOf(clock);
         mState.rate = p.rate;
         mState.rangeStart = p.start;
         mState.rangeEnd = p.end;
         mState.seekSerial = p.seekSerial;
         mState.rangeMode = std::uint8_t(p.range);
         mState.paused = p.paused;
+        mState.chapter = session.chapterIndex();
         mLeaderT->publish(wall::encode(mState));
         mBarrier->begin(mState.frame, monotonicSeconds(),
                         mState.frame == 1 ? kJoinSeconds : mScreen.wall.sync.deadlineMs / 1000.0);

@@ -30,16 +30,18 @@ public:
     bool isLeader() const noexcept { return mScreen.isLeader(); }
 
     /**
-     * @brief Leader: publish the frame's state from its clock and camera. Follower: wait (at most
+     * @brief Leader: publish the frame's state from its playback (clock or briefing chapter),
+     * camera and briefing chapter. Follower: wait (at most
      * `maxWaitSeconds`) for the leader's next state. False when there is nothing to draw (no
      * state yet, the leader is silent: the last frame stays on screen) or a stop arrived.
      */
     bool beginFrame(Session& session, double dataTime, const math::Viewpoint& viewpoint,
-                    const anim::ScenarioClock& clock, double maxWaitSeconds);
+                    const scene::Playback& playback, double maxWaitSeconds);
     /** @brief The frame to draw (valid after beginFrame() returned true). */
     double dataTime() const { return mState.dataTime; }
     double stepTime() const { return mState.stepTime; }
     const math::Viewpoint& viewpoint() const { return mState.camera; }
+    int chapter() const { return mState.chapter; }
     scene::Playback playback() const;
 
     /**
@@ -82,7 +84,8 @@ private:
     std::uint64_t mWarnedHash = 0;
     bool mWarnedSilent = false;
     bool mReadySent = false;
-    double mWaitUs = 0;  ///< leader: last frame's wait from its own ready to the release  ///< follower: the pending frame was reported
+    double mWaitUs = 0;  ///< leader: last frame's wait from its own ready to the release  ///<
+                         ///< follower: the pending frame was reported
     std::FILE* mLog = nullptr;
 };
 

@@ -86,13 +86,18 @@ Session::OverlayLayout WallScreen::overlayLayout() const {
             std::clamp(int(std::lround((y - s.yMm) * s.pixelsY / s.activeMmY)), 1, s.pixelsY);
         switch (corner) {
             case Corner::BottomRight:
-                box = {true, 0, 0, ax, ay};
+                box = {true, 0, 0, ax, ay, config::Corner::BottomRight};
                 break;
             case Corner::TopRight:
-                box = {true, 0, ay - 1, ax, s.pixelsY - ay + 1};
+                box = {true, 0, ay - 1, ax, s.pixelsY - ay + 1, config::Corner::TopRight};
                 break;
             case Corner::TopLeft:
-                box = {true, ax - 1, ay - 1, s.pixelsX - ax + 1, s.pixelsY - ay + 1};
+                box = {true,
+                       ax - 1,
+                       ay - 1,
+                       s.pixelsX - ax + 1,
+                       s.pixelsY - ay + 1,
+                       config::Corner::TopLeft};
                 break;
         }
         return box;

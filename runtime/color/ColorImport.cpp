@@ -1,4 +1,5 @@
 #include "runtime/color/ColorImport.h"
+#include "runtime/color/ColorText.h"
 
 #include "runtime/core/Strings.h"
 
@@ -14,24 +15,10 @@ namespace kiosk::color {
 
 namespace {
 
+using detail::readText;
+using detail::toNumber;
+
 using nlohmann::json;
-
-std::optional<std::string> readText(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return std::nullopt;
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-std::optional<double> toNumber(std::string_view s) {
-    if (s.empty()) return std::nullopt;
-    if (s.front() == '+') s.remove_prefix(1);
-    double v = 0;
-    auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (ec != std::errc{} || p != s.data() + s.size() || !std::isfinite(v)) return std::nullopt;
-    return v;
-}
 
 std::optional<double> channel(const json& j) {
     if (!j.is_number()) return std::nullopt;
@@ -211,9 +198,12 @@ Result<TransferFunction> parseColorRelief(std::string_view text, const std::stri
     tf.space = Space::Srgb;  // gdaldem interpolates the 0..255 components linearly
     int lineNo = 0;
     std::size_t pos = 0;
+    // One error per file: the first, with its line (a file in the wrong format would otherwise
+    // give one error per line).
     auto fail = [&](const char* code, const std::string& msg) {
         auto& e = d.error(code, file, "", msg);
         e.line = lineNo;
+        pos = text.size() + 1;
     };
     while (pos <= text.size()) {
         std::size_t end = text.find('\n', pos);
@@ -228,6 +218,7 @@ Result<TransferFunction> parseColorRelief(std::string_view text, const std::stri
         std::istringstream ls(line);
         for (std::string t; ls >> t;) tok.push_back(t);
         if (tok.empty()) continue;
+        if (tok[0] == "%") continue;  // GRASS rules: "% min max", the range r.colors saw
         if (tok.size() != 2 && tok.size() != 4 && tok.size() != 5) {
             fail("COLOR_CLR_SYNTAX", "expected `value r g b [a]` or `value colorname`, got " +
                                          std::to_string(tok.size()) + " fields");
@@ -266,6 +257,11 @@ Result<TransferFunction> parseColorRelief(std::string_view text, const std::stri
         for (char& c : key) c = char(std::tolower(static_cast<unsigned char>(c)));
         if (key == "nv") {
             tf.nodata = color;
+            continue;
+        }
+        if (key == "default") {  // GRASS: the colour of values outside the rules
+            tf.below = tf.above = color;
+            tf.belowGiven = tf.aboveGiven = true;
             continue;
         }
         double value = 0;

@@ -73,8 +73,8 @@ Diagnostics TransferFunction::finalize(bool explicitDomain, bool explicitBelow, 
                     "] is empty (needs two distinct stop values)");
         return d;
     }
-    if (!explicitBelow) below = evaluate(domainMin);
-    if (!explicitAbove) above = evaluate(domainMax);
+    if (!explicitBelow && !belowGiven) below = evaluate(domainMin);
+    if (!explicitAbove && !aboveGiven) above = evaluate(domainMax);
     return d;
 }
 

@@ -50,6 +50,9 @@ struct TransferFunction {
     Rgba nodata{0, 0, 0, 0};
     Rgba below{0, 0, 0, 0};  ///< set from the first stop/class unless the author gives one
     Rgba above{0, 0, 0, 0};  ///< set from the last stop/class unless the author gives one
+    /** @brief below/above came from a colour file (GMT B/F lines, GRASS `default`): finalize
+     *  keeps them as if the author had given them. */
+    bool belowGiven = false, aboveGiven = false;
     double domainMin = 0;
     double domainMax = 1;
 

@@ -19,6 +19,12 @@ Level initialThreshold() {
     if (std::strcmp(env, "debug") == 0) return Level::Debug;
     if (std::strcmp(env, "warn") == 0) return Level::Warn;
     if (std::strcmp(env, "error") == 0) return Level::Error;
+    // Runs once (it initialises gThreshold), so an unknown value is reported exactly once.
+    if (std::strcmp(env, "info") != 0)
+        std::fprintf(stderr,
+                     "geokiosk: warning: GEOKIOSK_LOG=%s is not a log level (debug, info, warn, "
+                     "error); using info\n",
+                     env);
     return Level::Info;
 }
 

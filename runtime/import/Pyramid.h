@@ -1,7 +1,7 @@
 #pragma once
 
 #include "runtime/core/Result.h"
-#include "runtime/import/Progress.h"
+#include "runtime/core/Progress.h"
 #include "runtime/io/StoreTypes.h"
 #include "runtime/io/StoreWriter.h"
 

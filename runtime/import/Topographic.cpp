@@ -6,7 +6,7 @@
 #include <map>
 #include <vector>
 
-#include "runtime/import/Progress.h"
+#include "runtime/core/Progress.h"
 #include "runtime/import/Pyramid.h"
 #include "runtime/import/TempStore.h"
 #include "runtime/topo/NormalMap.h"

@@ -4,6 +4,7 @@
 
 #include "runtime/gl/ShaderLibrary.h"
 #include "runtime/render/NormalShading.h"
+#include "runtime/render/ProceduralDetailGlsl.h"
 
 namespace kiosk::render {
 namespace {
@@ -26,6 +27,7 @@ uniform vec2 uElevLutDomain;
 uniform float uElevLutSize;
 uniform float uElevLutWeight;      // 0: uBaseColor, 1: hypsometric tint
 uniform vec4 uClip;
+uniform vec4 uHole;  // scene rectangle drawn by the warped detail grid instead (empty: none)
 
 out vec4 fragColor;
 
@@ -85,7 +87,14 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
     // Shared helpers come from the shader library so the GLSL and its C++ mirror
     // (color::lutCoordinate) have one source of truth.
     std::ostringstream s;
-    s << "#version 300 es\n" << kPrelude;
+    s << "#version 300 es\n";
+    if (desc.proceduralDetail) s << ProceduralDetailGlsl::beforePrelude();
+    s << kPrelude;
+    if (desc.proceduralDetail) {
+        auto detail = ProceduralDetailGlsl::declarations(desc);
+        if (!detail) return detail.diagnostics;
+        s << *detail;
+    }
     for (const char* lib : {"common/encode.glsl", "common/lighting.glsl"}) {
         auto text = gl::ShaderLibrary::source(lib);
         if (!text) return text.diagnostics;
@@ -132,7 +141,13 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
         s << "    float lens" << j << " = uLensParam" << j << ".w * lensMask(uLens" << j
           << ", uLensRot" << j << ", uLensParam" << j << ".x, vScenePos);\n";
     // Every layer's sample is computed up front so Blend can reference any visibility layer.
-    for (int i = 0; i < n; ++i) {
+    // (Procedural detail samples data layers first: the shading normal depends on them.)
+    const std::vector<int> order = ProceduralDetailGlsl::sampleOrder(desc);
+    const std::size_t dataFirst = ProceduralDetailGlsl::dataLayerCount(desc);
+    for (std::size_t o = 0; o < order.size(); ++o) {
+        if ((desc.proceduralDetail || desc.detailHole) && o == dataFirst)
+            s << ProceduralDetailGlsl::afterDataSamples(desc);
+        const int i = order[o];
         const auto& l = desc.layers[std::size_t(i)];
         s << "    vec2 uv" << i << " = (vScenePos - uLayerRect" << i << ".xy) * uLayerRect" << i
           << ".zw;\n";
@@ -198,6 +213,8 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
             }
         }
     }
+    if ((desc.proceduralDetail || desc.detailHole) && dataFirst == order.size())
+        s << ProceduralDetailGlsl::afterDataSamples(desc);
     for (int i = 0; i < n; ++i) {
         const auto& l = desc.layers[std::size_t(i)];
         if (l.kind == LayerKind::Visibility && l.op == LayerOp::Over) continue;  // mask source only
@@ -233,6 +250,7 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
     }
     // Mappings draw on the composited stack and are lit with it (docs/projective-mappings.md).
     if (desc.mappingCapacity > 0) s << "    C = applyMappings(C, vec3(vScenePos, vElevation));\n";
+    if (desc.proceduralDetail) s << ProceduralDetailGlsl::beforeLighting();
     s << "    C *= mix(1.0, lambert(vNormal, uLightDir, uAmbient), uGeometryLighting);\n";
     for (std::size_t j = 0; j < desc.lenses.size(); ++j) {
         if (desc.lenses[j].kind != LensKind::Highlight) continue;
@@ -240,7 +258,9 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
         s << "    C *= mix(mix(1.0, uLensParam" << j << ".z, uLensParam" << j
           << ".w), uLensParam" << j << ".y, lens" << j << ");\n";
     }
-    if (desc.outputPosition)
+    if (desc.outputPosition && desc.proceduralDetail)  // the displaced surface
+        s << "    fragColor = vec4(vScenePos, vElevation + vDetailOffset, 2.0);\n}\n";
+    else if (desc.outputPosition)
         s << "    fragColor = vec4(vScenePos, vElevation, 2.0);\n}\n";
     else
         s << "    fragColor = vec4(clamp(C, 0.0, 1.0), 1.0);\n}\n";

@@ -78,6 +78,18 @@ struct CompositeProgramDesc {
      * saves the elevation LUT fetch per pixel (llvmpipe samples it even at weight 0).
      */
     bool elevationTint = true;
+    /**
+     * @brief The program of the warped detail grid (render/WarpedGridRenderer, vertex shader
+     * warpgrid.vert): procedural bump and texture detail, never where a data layer is valid
+     * (render/ProceduralDetailGlsl.h).
+     */
+    bool proceduralDetail = false;
+    /**
+     * @brief The quadtree's program when the scene has procedural detail: fragments inside
+     * uHole are discarded unless a data layer shows colour there (the detail grid draws the
+     * rest; data stays drawn by the data surface, exactly as without detail).
+     */
+    bool detailHole = false;
 };
 
 /**

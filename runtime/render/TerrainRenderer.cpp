@@ -17,10 +17,10 @@ glm::vec3 sunDirection(double azimuthDeg, double altitudeDeg) {
 }
 
 Result<TerrainRenderer> TerrainRenderer::create(const CompositeProgramDesc& desc,
-                                                int maxTextureUnits) {
+                                                int maxTextureUnits, const char* vertexShader) {
     auto fragment = generateCompositeShader(desc, maxTextureUnits);
     if (!fragment) return fragment.diagnostics;
-    auto program = gl::buildProgramWithFragmentText("terrain.vert", "terrain(generated).frag",
+    auto program = gl::buildProgramWithFragmentText(vertexShader, "terrain(generated).frag",
                                                     *fragment);
     if (!program) return program.diagnostics;
     TerrainRenderer r;
@@ -43,6 +43,7 @@ Result<TerrainRenderer> TerrainRenderer::create(const CompositeProgramDesc& desc
     r.mLocTauTex = loc("uTauTex");
     r.mLocMapList = loc("uMapList");
     r.mLocMapListCount = loc("uMapListCount");
+    r.mLocHole = loc("uHole");
     for (std::size_t i = 0; i < desc.layers.size(); ++i) {
         const std::string n = std::to_string(i);
         r.mLayerLocs.push_back({loc("uLayer" + n), loc("uLayerB" + n), loc("uLayerRect" + n),
@@ -118,6 +119,8 @@ void TerrainRenderer::begin(const math::Camera& camera, const glm::dvec3& sceneO
     glUniform1f(mLocGeomLight, style.geometryLighting);
     glUniform1f(mLocVScale, style.verticalScale);
     if (mLocTauTex >= 0) glUniform1f(mLocTauTex, style.tauTex);
+    glUniform4f(mLocHole, float(mHoleMin.x - sceneOrigin.x), float(mHoleMin.y - sceneOrigin.y),
+                float(mHoleMax.x - sceneOrigin.x), float(mHoleMax.y - sceneOrigin.y));
     for (std::size_t k = 0; k < mLuts.size(); ++k) {
         const auto& lut = mLuts[k];
         const auto& l = mLutLocs[k];

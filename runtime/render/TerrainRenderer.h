@@ -80,7 +80,8 @@ struct LensBinding {
 class TerrainRenderer {
 public:
     static Result<TerrainRenderer> create(const CompositeProgramDesc& desc = {},
-                                          int maxTextureUnits = 16);
+                                          int maxTextureUnits = 16,
+                                          const char* vertexShader = "terrain.vert");
 
     /** @brief Hypsometric LUT whose first/last texel centres are domainMin/domainMax metres. */
     void setElevationLut(int size, const std::uint8_t* rgba, float domainMin, float domainMax);
@@ -114,6 +115,23 @@ public:
                     const glm::dvec2& clipMin, const glm::dvec2& clipMax,
                     const IndexRun* ranges, std::size_t count);
     void end();
+    /**
+     * @brief Fragments inside the world rectangle [min, max] are discarded from the next begin()
+     * on (the warped detail grid draws there); min > max: none.
+     */
+    void setHole(const glm::dvec2& min, const glm::dvec2& max) { mHoleMin = min, mHoleMax = max; }
+    GLuint programId() const noexcept { return mProgram.id(); }
+    /**
+     * @brief Set the per-draw matrix, origin and clip uniforms for a caller that issues its own
+     * draw of vertices relative to `origin` (the warped detail grid). Counts as one tile.
+     */
+    void beginExternalDraw(const glm::dvec3& origin, const glm::dvec2& clipMin,
+                           const glm::dvec2& clipMax, std::uint64_t triangles) {
+        setTileUniforms(origin, clipMin, clipMax);
+        ++mCounters.tilesDrawn;
+        ++mCounters.drawCalls;
+        mCounters.triangles += triangles;
+    }
 
     DrawCounters& counters() noexcept { return mCounters; }
     const CompositeProgramDesc& desc() const noexcept { return mDesc; }
@@ -154,6 +172,8 @@ private:
     DrawCounters mCounters;
     const MappingSet* mMappings = nullptr;
     GLint mLocMapList = -1, mLocMapListCount = -1;
+    GLint mLocHole = -1;
+    glm::dvec2 mHoleMin{1.0}, mHoleMax{0.0};
 };
 
 }  // namespace kiosk::render

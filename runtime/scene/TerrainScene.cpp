@@ -253,6 +253,7 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
     // The scene's elevation LUT is a flat grey and Session draws with elevationLutWeight 0
     // (hypsometric tint comes from data layers): skip that fetch per pixel.
     desc.elevationTint = false;
+    desc.detailHole = scenario.terrain.proceduralDetail;  // the detail grid draws inside a hole
     s->mDesc = desc;
     s->mMaxTextureUnits = caps.maxTextureUnits;
     if (Diagnostics d = s->setupMappings(caps); d.hasErrors()) return d;
@@ -295,24 +296,26 @@ Diagnostics TerrainScene::buildRenderer() {
     if (!renderer) return renderer.diagnostics;
     mRenderer = std::make_unique<render::TerrainRenderer>(std::move(*renderer.value));
     mRenderer->setMappings(mMappingSet.get());
-    for (std::size_t k = 0; k < mLuts.size(); ++k) {
-        const SceneLut& lut = mLuts[k];
-        render::LutBinding b;
-        if (lut.function) {
-            b.domainMin = float(lut.function->domainMin);
-            b.domainMax = float(lut.function->domainMax);
-            b.nodata = toVec4(lut.function->nodata);
-            b.below = toVec4(lut.function->below);
-            b.above = toVec4(lut.function->above);
-        }
-        b.texture = lut.texture.id();
-        b.size = lut.size;
-        mRenderer->setLut(int(k), b);
-    }
+    for (std::size_t k = 0; k < mLuts.size(); ++k) mRenderer->setLut(int(k), lutBinding(k));
     // Without a hypsometric layer the terrain base is a neutral grey.
     const std::uint8_t base[8] = {200, 200, 195, 255, 200, 200, 195, 255};
     mRenderer->setElevationLut(2, base, 0.0f, 1.0f);
-    return {};
+    return buildDetailRenderer();
+}
+
+render::LutBinding TerrainScene::lutBinding(std::size_t k) const {
+    const SceneLut& lut = mLuts[k];
+    render::LutBinding b;
+    if (lut.function) {
+        b.domainMin = float(lut.function->domainMin);
+        b.domainMax = float(lut.function->domainMax);
+        b.nodata = toVec4(lut.function->nodata);
+        b.below = toVec4(lut.function->below);
+        b.above = toVec4(lut.function->above);
+    }
+    b.texture = lut.texture.id();
+    b.size = lut.size;
+    return b;
 }
 
 bool TerrainScene::setPositionOutput(bool on) {
@@ -345,9 +348,12 @@ void TerrainScene::uploadPayload(terrain::TileHandle handle, terrain::TilePayloa
         if (!mCache->reserveGpu(handle, bytes)) return;
         slot.mesh = render::GpuMesh::upload(payload.mesh->vertices.data(), payload.mesh->vertices.size(),
                                             payload.mesh->indices.data(), payload.mesh->indices.size());
-        // The GPU copy is what is drawn; the CPU vertices are not needed again.
-        payload.mesh->vertices = {};
-        payload.mesh->indices = {};
+        // The GPU copy is what is drawn; the CPU vertices are not needed again (except by the
+        // procedural detail, which reads the TIN back near the camera; counted in the budget).
+        if (!mDetail) {
+            payload.mesh->vertices = {};
+            payload.mesh->indices = {};
+        }
     } else if (payload.image) {
         bytes = std::max<std::size_t>(payload.image->rgba.size() * 4 / 3, 1);  // with mipmaps
         if (!mCache->reserveGpu(handle, bytes)) return;
@@ -559,6 +565,7 @@ void TerrainScene::bindLenses() {
         b.outsideGain = float(1.0 - lens.lower);
         b.enabled = lens.enabled;
         mRenderer->setLens(int(j), b);
+        if (mDetail) setDetailLens(int(j), b);
     }
 }
 
@@ -586,6 +593,7 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
     bindMappings(camera);
     auto& r = *mRenderer;
     r.counters().clear();
+    if (mDetail) planDetail(camera, r);  // the quadtree leaves a hole where the detail grid draws
     r.begin(camera, mSceneOrigin, style);
     // Front to back: llvmpipe's early depth test then skips shading hidden terrain.
     mDrawOrder.clear();
@@ -615,10 +623,12 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
                 }
                 if (l.specT >= 0) bindArrival(l, t, b);
             }
-            b.strength = l.strength;
+            b.strength = l.strengthOverride.value_or(l.strength);
             r.setLayer(int(li), b);
+            if (mDetail) recordDetailTile(t, li, b);
             if (li == mFirstSequenceLayer) noteDrawnFrames(l, t);
         }
+        if (mDetail && detailHides(t)) continue;  // entirely under the detail grid
         bindTileMappings(p->key.id);
         const int depthBelowMesh = t.id.level - t.geometry.id.level;
         if (t.clipped && t.domainLevel == t.geometry.id.level &&
@@ -660,6 +670,7 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
     mFrame.tilesDrawn = r.counters().tilesDrawn;
     mFrame.triangles = r.counters().triangles;
     mFrame.drawCalls = r.counters().drawCalls;
+    if (mDetail) drawDetail(camera, style);
 }
 
 void TerrainScene::setTau(double tauGeom, double tauTex) {

@@ -20,8 +20,10 @@
 #include "runtime/render/GpuMesh.h"
 #include "runtime/render/MappingSet.h"
 #include "runtime/render/TerrainRenderer.h"
+#include "runtime/render/WarpedGridRenderer.h"
 #include "runtime/scene/Playback.h"
 #include "runtime/terrain/MeshCells.h"
+#include "runtime/terrain/MeshPosts.h"
 #include "runtime/terrain/TilePayload.h"
 #include "runtime/terrain/TileSelector.h"
 #include "runtime/terrain/TileStatsTable.h"
@@ -77,6 +79,8 @@ struct SceneFrameInfo {
     double uploadMs = 0;                   ///< GPU uploads (and evicted releases) this frame
     /** @brief Every sequence pair at this frame's own time is resident (a wall may step to it). */
     bool wantedSequenceResident = true;
+    /** @brief The procedural detail grid drew this frame (overlay: "procedural detail"). */
+    bool proceduralDetail = false;
 };
 
 /** @brief Bytes held by the tile cache by kind, and loader requests waiting (kiosk /metrics). */
@@ -149,6 +153,12 @@ public:
     std::vector<double> sequenceKeyTimes() const;
     const SceneLut* lut(const std::string& transferName) const;
     /**
+     * @brief A chapter's override of layer `id`: hidden, or drawn with `opacity` (nullopt: the
+     * scenario's). False if no such layer is in the stack.
+     */
+    bool setLayerOverride(const std::string& id, bool visible, std::optional<double> opacity);
+    void clearLayerOverrides();
+    /**
      * @brief Draw scene positions and elevations instead of colours (into a float target) for
      * fidelity measurements. Rebuilds the terrain program; false if that failed.
      */
@@ -161,6 +171,16 @@ public:
     void setTau(double tauGeom, double tauTex);
     double tauGeom() const noexcept { return mOptions.tauGeom; }
     double tauTex() const noexcept { return mOptions.tauTex; }
+    /**
+     * @brief Warp passes of the procedural detail grid per frame (default 2); 0 draws a regular
+     * grid of the same vertex count (the benchmark's baseline). No effect without detail.
+     */
+    void setDetailWarpIterations(int iterations);
+    /**
+     * @brief Where the procedural detail grid drew last frame: the world rectangle only it covers
+     * (the quadtree's hole), false when it did not draw.
+     */
+    bool detailHole(glm::dvec2& min, glm::dvec2& max) const;
 
 private:
     TerrainScene() = default;
@@ -180,6 +200,7 @@ private:
         anim::VisiblePair pair;
         anim::DisplayPair shown;
         float strength = 1.0f;
+        std::optional<float> strengthOverride;  ///< a briefing chapter's (TerrainSceneOverrides.cpp)
         std::optional<float> nodataAs;
         anim::PrefetchPlanner planner;
         anim::PrefetchPlan plan;
@@ -191,6 +212,23 @@ private:
     };
 
     Diagnostics buildRenderer();
+    render::LutBinding lutBinding(std::size_t k) const;
+    // TerrainSceneDetail.cpp: the procedural detail grid near the camera (issue 21).
+    struct DetailState;
+    struct DetailDeleter {
+        void operator()(DetailState* d) const;
+    };
+    Diagnostics buildDetailRenderer();
+    const terrain::MeshPosts* detailPosts(const terrain::DrawTile& t);
+    /** @brief Region, sketch, warp and upload; sets the quadtree renderer's hole. */
+    void planDetail(const math::Camera& camera, render::TerrainRenderer& quadtree);
+    void setDetailLens(int index, const render::LensBinding& lens);
+    /** @brief The sketch map over the planned region from the drawn meshes; false if incomplete. */
+    bool buildDetailSketch(double postSpacing, int finestLevel);
+    void recordDetailTile(const terrain::DrawTile& t, std::size_t layerIndex,
+                          const render::LayerBinding& binding);
+    bool detailHides(const terrain::DrawTile& t) const;
+    void drawDetail(const math::Camera& camera, const render::TerrainStyle& style);
     void bindLenses();
     /** @brief Data layers and LUTs of the projective mappings (TerrainSceneMappings.cpp). */
     Diagnostics setupMappings(const gl::Caps& caps);
@@ -269,6 +307,7 @@ private:
     std::vector<glm::dvec4> mMappingBoxes;  ///< xy footprint of each uploaded mapping
     std::vector<int> mTileMappings;
     int mRoutePointLayer = -1;
+    std::unique_ptr<DetailState, DetailDeleter> mDetail;
 };
 
 }  // namespace kiosk::scene

@@ -6,7 +6,7 @@
 namespace kiosk::wall {
 namespace {
 
-constexpr std::uint8_t kVersion = 1;
+constexpr std::uint8_t kVersion = 2;  // 2: FrameState.chapter
 constexpr std::size_t kMaxIdBytes = 255;
 
 class Writer {
@@ -92,6 +92,7 @@ std::vector<std::uint8_t> encode(const FrameState& m) {
     w.u64(m.seekSerial);
     w.u8(m.rangeMode);
     w.u8(m.paused ? 1 : 0);
+    w.u32(std::uint32_t(m.chapter));
     return w.take();
 }
 
@@ -141,6 +142,7 @@ std::optional<FrameState> decodeState(std::span<const std::uint8_t> b) {
     m.seekSerial = r.u64();
     m.rangeMode = r.u8();
     m.paused = r.u8() != 0;
+    m.chapter = std::int32_t(r.u32());
     if (!r.ok()) return std::nullopt;
     return m;
 }

@@ -30,6 +30,8 @@ struct FrameState {
     std::uint64_t seekSerial = 0;
     std::uint8_t rangeMode = 0;
     bool paused = false;
+    /** Briefing chapter shown (-1: none): its layer overrides and caption apply on every node. */
+    std::int32_t chapter = -1;
 };
 
 /** @brief A node's report for one frame (followers PUSH, the leader PULLs). */

@@ -7,11 +7,13 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -227,6 +229,33 @@ TEST_F(WallProcessTest, TwoHundredFramesInStep) {
     EXPECT_GE(steps.size(), 2u) << "the flood never stepped";
 }
 
+// The leader's first frame waits for the followers to join (here >= 3 s); that wait is start-up,
+// not playback: the data time of the next frame moves on by one frame's time, not by the wait.
+TEST_F(WallProcessTest, JoinWaitDoesNotAdvanceTheClock) {
+    const fs::path wall = writeWall(3000);
+    Proc procs[4];
+    procs[0].start(play(wall, "tl", {"--frames", "10", "--max-fps", "20"}), mDir / "tl.log");
+    std::this_thread::sleep_for(std::chrono::seconds(3));
+    for (int i = 1; i < 4; ++i)
+        procs[i].start(play(wall, kScreens[i], {}), mDir / (std::string(kScreens[i]) + ".log"));
+    for (int i = 0; i < 4; ++i)
+        ASSERT_EQ(procs[i].wait(std::chrono::seconds(60)), 0)
+            << kScreens[i] << ": " << slurp(mDir / (std::string(kScreens[i]) + ".log"));
+    const auto leader = readLog(mDir / "tl.jsonl");
+    ASSERT_EQ(leader.size(), 10u);
+    const double joinWaitS = leader[0]["wait_us"].get<double>() / 1e6;
+    ASSERT_GT(joinWaitS, 2.5) << "the followers joined before they were started?";
+    // The demo's first briefing chapter plays 4 h of data in 8 s: 1800 data seconds per second.
+    constexpr double kRate = 1800.0;
+    const double dataStep =
+        leader[1]["data_time"].get<double>() - leader[0]["data_time"].get<double>();
+    const double swapGapS =
+        (leader[1]["swap_us"].get<double>() - leader[0]["swap_us"].get<double>()) / 1e6;
+    // Frame 2's dt runs from the end of frame 1's barrier to frame 2's start, within the swap gap
+    // (+0.2 s for frame 1's own swap); counted from frame 1's start it would include the wait.
+    EXPECT_LE(dataStep, kRate * (swapGapS + 0.2)) << "join wait " << joinWaitS << " s";
+}
+
 // A follower killed mid-run does not stall the wall longer than the deadline; restarted, it is
 // back on the same frame as its peers within 5 of its frames.
 TEST_F(WallProcessTest, KilledFollowerIsDroppedAndRejoins) {
@@ -282,6 +311,102 @@ TEST_F(WallProcessTest, KilledFollowerIsDroppedAndRejoins) {
     };
     for (std::size_t i = 4; i < again.size(); ++i)
         EXPECT_TRUE(inStep(again[i])) << "swap " << i + 1;
+}
+
+// Overlays on a wall (read back from the rendered screens): each is drawn once, on the screen the
+// wall file names, inside its box, and never across a bezel. A 2x1 wall of 320x180 screens with a
+// 10 mm mullion; the same screens rendered without overlays are the reference, so every pixel
+// that differs belongs to an overlay panel.
+TEST_F(WallProcessTest, OverlaysStayOnTheirScreens) {
+    // Positions the canvas anchors must override (legend keeps its own: it is placed by screen).
+    std::ofstream(mDir / "overlays.json") << nlohmann::json{
+        {"version", 1},
+        {"include", {fs::absolute("scenarios/demo/rainier.json").string()}},
+        {"title", "Wall"},
+        {"caption", ""},
+        {"overlays",
+         {{"legend", {{"transfer", "depth"}, {"position", "top-left"}}},
+          {"timeLabel", {{"format", "%H:%M"}, {"timeZone", "UTC"}, {"position", "bottom-left"}}},
+          {"title", {{"position", "bottom-left"}}},
+          {"progress", {{"enabled", false}}}}}};
+    const fs::path wall = mDir / "wall2.json";
+    std::ofstream(wall) << nlohmann::json{
+        {"grid", {{"rows", 1}, {"columns", 2}}},
+        {"screenDefaults", {{"pixels", {320, 180}}, {"activeMm", {320, 180}}}},
+        {"mullionMm", {10, 10}},
+        {"screens",
+         {{{"id", "l"}, {"row", 0}, {"column", 0}}, {{"id", "r"}, {"row", 0}, {"column", 1}}}},
+        {"nodes", {{{"id", "n1"}, {"screens", {"l", "r"}}}}},
+        {"leader", "n1"},
+        {"sync",
+         {{"state", "ipc://" + (mDir / "state").string()},
+          {"ready", "ipc://" + (mDir / "ready").string()}}},
+        // Canvas 650x180 mm. Title: x = 328.25 mm lies on the mullion (320..330), nearer to "r":
+        // its top-left corner goes to r's left edge, 18 px down. Time label: top-right corner at
+        // the middle of "l" (160, 90).
+        {"overlays",
+         {{"legend", {{"screen", "l"}}},
+          {"title", {{"canvas", {0.505, 0.1}}}},
+          {"timeLabel", {{"canvas", {0.25, 0.5}}}}}}};
+    Proc procs[4];
+    const std::string screens[] = {"l", "r"};
+    for (int i = 0; i < 4; ++i) {
+        const std::string scenario = i < 2 ? "overlays.json" : "scenario.json";
+        const std::string name = screens[i % 2] + (i < 2 ? "-on" : "-off");
+        procs[i].start({KIOSK_GEOKIOSK_BIN, "render", (mDir / scenario).string(), "--wall",
+                        wall.string(), "--screen", screens[i % 2], "--time", "+3h", "--out",
+                        (mDir / (name + ".png")).string()},
+                       mDir / (name + ".log"));
+    }
+    for (int i = 0; i < 4; ++i) ASSERT_EQ(procs[i].wait(std::chrono::seconds(60)), 0) << i;
+    // The pixels an overlay changed, as a bounding box per region of interest.
+    struct Box {
+        int x0 = 1 << 30, y0 = 1 << 30, x1 = -1, y1 = -1;
+        long n = 0;
+        void add(int x, int y) {
+            x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+            ++n;
+        }
+    };
+    auto changed = [&](const std::string& screen, auto&& where) {
+        const gl::Image on = test::readImage((mDir / (screen + "-on.png")).string());
+        const gl::Image off = test::readImage((mDir / (screen + "-off.png")).string());
+        EXPECT_EQ(on.width, 320);
+        EXPECT_EQ(on.height, 180);
+        Box b;
+        for (int y = 0; y < std::min(on.height, off.height); ++y)
+            for (int x = 0; x < std::min(on.width, off.width); ++x) {
+                int d = 0;
+                for (int c = 0; c < 3; ++c)
+                    d = std::max(d, std::abs(int(on.pixel(x, y)[c]) - int(off.pixel(x, y)[c])));
+                if (d > 8 && where(x, y)) b.add(x, y);
+            }
+        return b;
+    };
+    // Screen "l": the legend at the scenario's top-left (a screen placement keeps positions)...
+    const Box legend = changed("l", [](int, int y) { return y < 89; });
+    EXPECT_GT(legend.n, 200);
+    EXPECT_LE(legend.x0, 16);
+    EXPECT_LE(legend.y0, 16);
+    // ...the time label in its box below and left of its anchor (160, 90), at the box's top-right
+    // corner although the scenario says bottom-left.
+    const Box label = changed("l", [](int, int y) { return y >= 89; });
+    EXPECT_GT(label.n, 100);
+    EXPECT_LT(label.x1, 160);
+    EXPECT_GT(label.x1, 140);
+    EXPECT_GE(label.y0, 89);
+    EXPECT_LT(label.y1, 140);
+    // Screen "r": only the title, all of it inside r, top-left corner just right of the mullion
+    // and 18 px down (the scenario said bottom-left); "l" has nothing near the mullion.
+    const Box title = changed("r", [](int, int) { return true; });
+    EXPECT_GT(title.n, 100);
+    EXPECT_GE(title.x0, 1);
+    EXPECT_LE(title.x0, 16);
+    EXPECT_GE(title.y0, 18);
+    EXPECT_LE(title.y0, 34);
+    EXPECT_LT(title.y1, 90);
+    const Box nearMullion = changed("l", [](int x, int) { return x >= 200; });
+    EXPECT_EQ(nearMullion.n, 0);
 }
 
 // Bad wall files and screen ids: one clear line, documented exit codes.

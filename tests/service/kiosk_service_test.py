@@ -63,9 +63,9 @@ with temp_dir() as tmp:
         status = [l for l in (seen or []) if l.startswith("STATUS=")]
         c.check(bool(status) and "rainier.json" in status[-1] and "fps" in status[-1],
                 "STATUS names the scenario and fps: %s" % (status[-1] if status else None))
-        lines = notify.collect(2.0)
+        lines = notify.collect(4.0)
         pings = sum(1 for l in lines if l == "WATCHDOG=1")
-        c.check(pings >= 2, "WATCHDOG=1 while frames progress (%d in 2 s)" % pings)
+        c.check(pings >= 2, "WATCHDOG=1 while frames progress (%d in 4 s)" % pings)
 
         m1, headers = metrics(k)
         c.check(headers.get("Content-Type", "").startswith("text/plain; version=0.0.4"),

@@ -120,6 +120,9 @@ with temp_dir() as tmp:
                            "127.0.0.1:0"], env, os.path.join(tmp, "log-kiosk"))
             try:
                 k.wait_port()
+                end = time.monotonic() + 60  # display created (slow under load)
+                while time.monotonic() < end and "fullscreen" not in k.log_text():
+                    time.sleep(0.1)
                 # The frame waits for weston's frame callback, which never comes: no frame counts
                 # as presented, so no READY, no watchdog ping, /health 503.
                 c.check(not wait_for_frames(k, 3), "kiosk-shell: no frame counted as presented")

@@ -18,6 +18,7 @@ FrameState state(std::uint64_t frame, double t = 100.0) {
     s.rate = 60;
     s.seekSerial = 7;
     s.paused = true;
+    s.chapter = 1;
     return s;
 }
 
@@ -43,6 +44,7 @@ TEST(SyncMessagesTest, RoundTripAndRejectTruncated) {
     EXPECT_EQ(back->scenarioId, "flood.json");
     EXPECT_EQ(back->seekSerial, 7u);
     EXPECT_TRUE(back->paused);
+    EXPECT_EQ(back->chapter, 1);
     for (std::size_t n = 0; n < bytes.size(); ++n)
         EXPECT_FALSE(decodeState(std::span(bytes).first(n))) << n;
     bytes.push_back(0);

@@ -1,0 +1,56 @@
+#pragma once
+
+#include "runtime/core/Diagnostics.h"
+#include "runtime/export/VideoEncoder.h"
+
+#include <cstdint>
+#include <filesystem>
+
+struct AVFormatContext;
+struct AVCodecContext;
+struct AVStream;
+struct AVFrame;
+struct AVPacket;
+struct SwsContext;
+
+namespace kiosk::video {
+
+/**
+ * @brief One video stream in one file through libavformat/libavcodec: the single place that
+ * knows codec names, pixel formats, colour tags and the RGB -> YUV matrix. Not thread-safe; the
+ * encoder thread owns it. Writes to `path.part` and renames on close(), so a half-written
+ * video never carries the final name.
+ */
+class AvStream {
+public:
+    AvStream() = default;
+    ~AvStream();
+    AvStream(const AvStream&) = delete;
+    AvStream& operator=(const AvStream&) = delete;
+
+    bool open(const VideoOptions& options, Diagnostics& diags);
+    /** @brief Convert one RGBA8 frame (top row first) and encode it. */
+    bool encode(const std::uint8_t* rgba, Diagnostics& diags);
+    /** @brief Flush the codec, write the trailer, move the file into place. */
+    bool close(Diagnostics& diags);
+    /** @brief After a failure: release everything and delete the partial file. */
+    void abandon();
+
+private:
+    bool drain(bool flushing, Diagnostics& diags);
+    void release();
+    void error(Diagnostics& diags, const char* code, const std::string& what, int averr);
+
+    VideoOptions mOptions;
+    std::filesystem::path mPartPath;
+    AVFormatContext* mFormat = nullptr;
+    AVCodecContext* mCodec = nullptr;
+    AVStream* mStream = nullptr;
+    AVFrame* mFrame = nullptr;
+    AVPacket* mPacket = nullptr;
+    SwsContext* mSws = nullptr;  ///< RGBA -> YUV 4:2:0 (BT.709, limited); null for FFV1's RGB
+    std::int64_t mNextPts = 0;
+    bool mHeaderWritten = false;
+};
+
+}  // namespace kiosk::video

@@ -1,0 +1,84 @@
+#pragma once
+
+#include "runtime/core/Result.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+// Video export through FFmpeg's libraries (libavcodec, libavformat, libswscale). No GL here: the
+// frame loop hands finished RGBA readbacks (the very bytes the PNG path writes) to the encoder.
+namespace kiosk::video {
+
+/** @brief What a file name's extension selects. */
+enum class VideoFormat {
+    H264Mp4,  ///< .mp4: H.264 (libx264) yuv420p, BT.709 limited range, CRF
+    Ffv1Mkv,  ///< .mkv: FFV1 lossless RGB (0RGB32): decoded frames equal the input exactly
+    Vp9Webm,  ///< .webm: VP9 (libvpx) yuv420p, BT.709 limited range, CRF
+};
+
+/** @brief .mp4 / .mkv / .webm (case-sensitive, like the rest of the CLI), else nullopt. */
+std::optional<VideoFormat> videoFormatForPath(const std::filesystem::path& path);
+const char* videoFormatName(VideoFormat f) noexcept;
+
+/** @brief A named span of the video (MP4 / Matroska chapter markers). Seconds of video time. */
+struct VideoChapter {
+    std::string title;
+    double start = 0;
+    double end = 0;
+};
+
+struct VideoOptions {
+    std::filesystem::path path;
+    VideoFormat format = VideoFormat::H264Mp4;
+    int width = 0;   ///< even for the 4:2:0 formats
+    int height = 0;  ///< even for the 4:2:0 formats
+    double fps = 30;
+    /** @brief Constant rate factor; nullopt: the format's default (H.264 18, VP9 31). Ignored by
+     * FFV1. */
+    std::optional<int> crf;
+    std::vector<VideoChapter> chapters;
+    /** @brief Frames that may wait for the encoder thread before push() blocks. */
+    int queueFrames = 4;
+};
+
+/** @brief Default CRF of a lossy format (what `--crf` overrides). */
+int defaultCrf(VideoFormat f) noexcept;
+/** @brief Valid `--crf` range of a lossy format (libx264 0..51, libvpx-vp9 0..63). */
+int maxCrf(VideoFormat f) noexcept;
+
+/**
+ * @brief Encodes RGBA8 frames (top row first) into a video file on its own thread.
+ *
+ * push() copies a frame into one of a fixed pool of buffers and returns at once while a buffer
+ * is free (bounded memory: queueFrames frames), so rendering the next frame overlaps encoding
+ * this one. finish() drains the queue, flushes the codec and writes the trailer (and the
+ * chapters). Errors (disk full, codec failure) surface at the next push() or at finish().
+ * Codes: EXPORT_CODEC (encoder missing from this FFmpeg build), EXPORT_OPEN, EXPORT_ENCODE,
+ * EXPORT_WRITE.
+ */
+class VideoEncoder {
+public:
+    static Result<std::unique_ptr<VideoEncoder>> open(const VideoOptions& options);
+    ~VideoEncoder();
+    VideoEncoder(const VideoEncoder&) = delete;
+    VideoEncoder& operator=(const VideoEncoder&) = delete;
+
+    /** @brief Queue one frame (width*height*4 bytes). False once encoding failed. */
+    bool push(const std::uint8_t* rgba, Diagnostics& diags);
+    /** @brief Encode what is queued, flush and close the file. Call once. */
+    bool finish(Diagnostics& diags);
+
+    std::int64_t framesEncoded() const noexcept;
+
+    struct Impl;
+
+private:
+    explicit VideoEncoder(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> mImpl;
+};
+
+}  // namespace kiosk::video

@@ -1,0 +1,141 @@
+// Overlay settings that the scenario parses do what they say (issue 18): the legend goes where
+// `position` puts it, `title.enabled: false` leaves no title pixels, `timeLabel.position` moves
+// the time label, and a projective mapping's transfer function gets its legend. Each case draws
+// the same frame with and without the overlay and looks at where the pictures differ.
+#include "runtime/app/Session.h"
+#include "tests/support/EglTestContext.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <thread>
+
+namespace kiosk::app {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr int kW = 480, kH = 270;
+
+/** Bounding box of the pixels where two images differ; empty (w == 0) if none. */
+struct DiffBox {
+    int x0 = kW, y0 = kH, x1 = -1, y1 = -1;
+    int count = 0;
+    bool empty() const { return count == 0; }
+};
+
+DiffBox diff(const gl::Image& a, const gl::Image& b) {
+    DiffBox d;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            const auto *p = a.pixel(x, y), *q = b.pixel(x, y);
+            if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) continue;
+            ++d.count;
+            d.x0 = std::min(d.x0, x);
+            d.y0 = std::min(d.y0, y);
+            d.x1 = std::max(d.x1, x);
+            d.y1 = std::max(d.y1, y);
+        }
+    return d;
+}
+
+class OverlaySettings : public test::EglTest {
+protected:
+    /** The frame of `scenario` at +3 h from `viewpoint`, after `adjust` changed the scenario. */
+    gl::Image frame(const std::string& scenario, const std::string& viewpoint,
+                    const std::function<void(config::Scenario&)>& adjust) {
+        auto rt = gl::RenderTarget::create(kW, kH);
+        EXPECT_TRUE(rt.ok());
+        auto s = Session::open(scenario, mCaps, adjust);
+        EXPECT_TRUE(s.ok()) << s.diagnostics.format();
+        if (!s.ok() || !rt.ok()) return {};
+        Session& session = **s;
+        const double t = session.startTime() + 900;
+        auto vp = session.viewpointAt(t, viewpoint);
+        EXPECT_TRUE(vp.ok());
+        const math::Camera cam = makeCamera(*vp, session.terrain().bounds(), kW, kH, 45);
+        for (int k = 0; k < 30000 && (k == 0 || !session.terrain().settled()); ++k) {
+            session.prepare(cam, t);
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+        rt->bind();
+        session.drawFrame(cam, t, kW, kH);
+        return rt->readColor();
+    }
+    void SetUp() override {
+        test::EglTest::SetUp();
+        if (IsSkipped() || HasFatalFailure()) return;
+        if (!fs::exists("data/generated/rainier.gpkg"))
+            KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_DATA",
+                               "demo store missing: run tools/prepare-demo.sh");
+    }
+    const std::string kDemo = "scenarios/demo/rainier.json";
+};
+
+TEST_F(OverlaySettings, LegendPositionMovesTheLegend) {
+    const gl::Image none =
+        frame(kDemo, "overview", [](config::Scenario& s) { s.overlays.legend.enabled = false; });
+    const gl::Image bottomRight = frame(kDemo, "overview", [](config::Scenario& s) {
+        s.overlays.legend.position = config::Corner::BottomRight;
+    });
+    const gl::Image topLeft = frame(kDemo, "overview", [](config::Scenario& s) {
+        s.overlays.legend.position = config::Corner::TopLeft;
+    });
+    const DiffBox br = diff(none, bottomRight), tl = diff(none, topLeft);
+    ASSERT_FALSE(br.empty());
+    ASSERT_FALSE(tl.empty());
+    EXPECT_GT(br.x0, kW / 2);
+    EXPECT_GT(br.y0, kH / 2);
+    EXPECT_LT(tl.x1, kW / 2);
+    // At top-left it stacks below the title panel (itself below the time label at this width)
+    // rather than covering it.
+    EXPECT_GT(tl.y0, 90);
+    EXPECT_LT(tl.y1, kH * 2 / 3);
+}
+
+TEST_F(OverlaySettings, DisabledTitleHasNoTitlePixels) {
+    const gl::Image shown = frame(kDemo, "overview", nullptr);
+    const gl::Image disabled =
+        frame(kDemo, "overview", [](config::Scenario& s) { s.overlays.title.enabled = false; });
+    const gl::Image untitled = frame(kDemo, "overview", [](config::Scenario& s) {
+        s.title.clear();
+        s.caption.clear();
+    });
+    // Disabled is exactly the picture of a scenario without any title or caption ...
+    EXPECT_TRUE(diff(disabled, untitled).empty());
+    // ... and the title panel (top-left) is what disabling removed.
+    const DiffBox d = diff(shown, disabled);
+    ASSERT_FALSE(d.empty());
+    EXPECT_LT(d.x0, 20);
+    EXPECT_LT(d.x1, kW * 3 / 4);
+    EXPECT_LT(d.y1, kH / 2);
+    EXPECT_GT(d.count, 3000);  // a panel with two lines of text
+}
+
+TEST_F(OverlaySettings, TimeLabelPositionMovesTheLabel) {
+    const gl::Image none =
+        frame(kDemo, "overview", [](config::Scenario& s) { s.overlays.timeLabel.enabled = false; });
+    const gl::Image bottomLeft = frame(kDemo, "overview", [](config::Scenario& s) {
+        s.overlays.timeLabel.position = config::Corner::BottomLeft;
+    });
+    const DiffBox d = diff(none, bottomLeft);
+    ASSERT_FALSE(d.empty());
+    EXPECT_LT(d.x1, kW / 2 + 40);  // the label is about 200 px wide at this size
+    EXPECT_GT(d.y0, kH / 2);
+}
+
+TEST_F(OverlaySettings, ProjectiveMappingTransferFunctionHasALegend) {
+    const std::string hazard = "scenarios/mappings/hazard.json";
+    const gl::Image with = frame(hazard, "", nullptr);
+    const gl::Image without =
+        frame(hazard, "", [](config::Scenario& s) { s.overlays.legend.enabled = false; });
+    const DiffBox d = diff(without, with);
+    ASSERT_FALSE(d.empty()) << "the hazard transfer function's legend is missing";
+    EXPECT_GT(d.x0, kW / 2);
+    EXPECT_GT(d.y0, kH / 2);
+    EXPECT_GT(d.count, 2000);  // a panel, not a stray pixel
+}
+
+}  // namespace
+}  // namespace kiosk::app
