@@ -1,10 +1,12 @@
 #include "config/MeaningCheck.h"
 
 #include "runtime/core/Strings.h"
+#include "runtime/core/Units.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -96,10 +98,22 @@ private:
         const TransferFunctionDef* def = mS.findTransfer(tfName);
         if (!def) return;
         const auto& tf = def->function;
-        if (!tf.units.empty() && !r.units.empty() && tf.units != r.units)
+        // "metres" and "m", "mm h-1" and "mm/h" are the same units (runtime/core/Units.h).
+        if (!tf.units.empty() && !r.units.empty() && tf.units != r.units &&
+            !sameUnits(tf.units, r.units))
             error("SCENARIO_UNITS", ptr,
                   "transfer function " + quote(tfName) + " is in " + quote(tf.units) + " but " +
                       r.what + " is in " + quote(r.units));
+        if (tf.units.empty() && !r.units.empty() && r.units != "class") {
+            // Without units the legend takes the data's (DataUnits.h): only if they agree.
+            auto [it, fresh] = mDataUnits.emplace(tfName, std::make_pair(r.units, r.what));
+            if (!fresh && !sameUnits(it->second.first, r.units))
+                warning("SCENARIO_UNITS", ptr,
+                        "transfer function " + quote(tfName) + " states no units and colours " +
+                            it->second.second + " in " + quote(it->second.first) + " and " +
+                            r.what + " in " + quote(r.units) + "; its legend shows no units")
+                    .hint = "give the transfer function \"units\", or one per data set";
+        }
         if (!(r.max >= r.min) || !std::isfinite(r.min) || !std::isfinite(r.max)) return;
         const std::string range = "[" + num(r.min) + ", " + num(r.max) + "]";
         const std::string domain = "[" + num(tf.domainMin) + ", " + num(tf.domainMax) + "]";
@@ -190,6 +204,7 @@ private:
     const Scenario& mS;
     const StoreLookup& mLookup;
     Diagnostics mDiags;
+    std::map<std::string, std::pair<std::string, std::string>> mDataUnits;  ///< tf: units, what
 };
 
 }  // namespace

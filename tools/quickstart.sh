@@ -16,7 +16,8 @@ BUILD_PKGS=(build-essential cmake ninja-build pkg-config git
     libglm-dev libopenimageio-dev libsqlite3-dev nlohmann-json3-dev libgtest-dev
     libgdal-dev gdal-bin libnetcdf-dev libfreetype-dev fonts-dejavu-core
     libsystemd-dev libcpp-httplib-dev libwayland-dev wayland-protocols libzmq3-dev cppzmq-dev
-    libavcodec-dev libavformat-dev libswscale-dev libavutil-dev)
+    libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
+    libspng-dev libturbojpeg0-dev)
 TEST_PKGS=(xvfb xauth glslang-tools clang-14 libclang-rt-14-dev python3-prometheus-client weston lintian ffmpeg
     python3-jsonschema)
 

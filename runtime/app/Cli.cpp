@@ -3,11 +3,10 @@
 #include <cstdio>
 #include <exception>
 
-#include "runtime/app/ImportCommand.h"
+#include "runtime/app/ImporterExec.h"
 #include "runtime/app/InfoCommand.h"
 #include "runtime/app/PlayCommand.h"
 #include "runtime/app/RenderCommand.h"
-#include "runtime/app/TopographicCommand.h"
 #include "runtime/app/ValidateCommand.h"
 #include "runtime/core/ExitCode.h"
 #include "runtime/core/Strings.h"
@@ -60,9 +59,8 @@ int dispatch(const std::vector<std::string>& args) {
     }
     if (cmd == "play") return runPlayCommand(rest);
     if (cmd == "render") return runRenderCommand(rest);
-    if (cmd == "import" && !rest.empty() && rest[0] == "topographic")
-        return runImportTopographic({rest.begin() + 1, rest.end()});
-    if (cmd == "import") return runImportCommand(rest);
+    // The importer is a separate executable (GDAL, netCDF stay out of the kiosk process).
+    if (cmd == "import") return execImporter(rest);
     if (cmd == "validate") return runValidateCommand(rest);
     if (cmd == "info") return runInfoCommand(rest);
     std::string msg = "geokiosk: unknown command '" + cmd + "'";

@@ -1,34 +1,41 @@
 #include "runtime/app/ImageOutput.h"
 
-#include <OpenImageIO/imageio.h>
+#include "runtime/io/ImageCodec.h"
 
+#include <cstdio>
 #include <vector>
 
 namespace kiosk::app {
 
+namespace {
+/** zlib's default level: the size/speed balance a frame sequence wants. */
+constexpr int kPngLevel = 6;
+}  // namespace
+
 bool writePng(const std::filesystem::path& path, const gl::Image& image, Diagnostics& diags) {
     const std::filesystem::path tmp = path.string() + ".tmp.png";
-    auto out = OIIO::ImageOutput::create(tmp.string());
-    if (!out) {
-        diags.error("OUTPUT_WRITE", path.string(), "", "cannot create PNG writer: " + OIIO::geterror());
-        return false;
-    }
     std::vector<std::uint8_t> rgb(std::size_t(image.width) * std::size_t(image.height) * 3);
     for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i) {
         rgb[i * 3 + 0] = image.rgba[i * 4 + 0];
         rgb[i * 3 + 1] = image.rgba[i * 4 + 1];
         rgb[i * 3 + 2] = image.rgba[i * 4 + 2];
     }
-    OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-    spec.attribute("Software", "geokiosk");
-    if (!out->open(tmp.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) ||
-        !out->close()) {
-        diags.error("OUTPUT_WRITE", path.string(), "", "cannot write PNG: " + out->geterror());
-        std::error_code ec;
+    auto png = io::encodePng8(rgb.data(), image.width, image.height, 3, kPngLevel);
+    if (!png) {
+        const Diagnostic* e = png.diagnostics.firstError();
+        diags.error("OUTPUT_WRITE", path.string(), "",
+                    "cannot encode PNG: " + (e ? e->message : std::string("unknown error")));
+        return false;
+    }
+    std::FILE* f = std::fopen(tmp.c_str(), "wb");
+    const bool written = f && std::fwrite(png->data(), 1, png->size(), f) == png->size();
+    const bool closed = f && std::fclose(f) == 0;
+    std::error_code ec;
+    if (!written || !closed) {
+        diags.error("OUTPUT_WRITE", path.string(), "", "cannot write PNG");
         std::filesystem::remove(tmp, ec);
         return false;
     }
-    std::error_code ec;
     std::filesystem::rename(tmp, path, ec);
     if (ec) {
         diags.error("OUTPUT_WRITE", path.string(), "", "cannot rename into place: " + ec.message());

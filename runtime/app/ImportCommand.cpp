@@ -6,6 +6,7 @@
 #include "runtime/core/ExitCode.h"
 #include "runtime/core/Strings.h"
 #include "runtime/core/TimeParse.h"
+#include "runtime/core/Units.h"
 #include "runtime/import/Importer.h"
 
 #include <algorithm>
@@ -161,6 +162,8 @@ int runImportCommand(const std::vector<std::string>& args) {
         return usage("import " + kind + " takes one source, got " + std::to_string(sources.size()));
     if (kind == "elevation" && o.units && *o.units != "m" && *o.units != "ft")
         return usage("--units must be m or ft for elevation, got '" + *o.units + "'");
+    std::string unitsWhy;
+    if (o.units && !cleanUnits(*o.units, &unitsWhy)) return usage("--units " + unitsWhy);
     if (kind != "elevation" && o.name.empty()) return usage("import " + kind + " needs --name");
     if (kind != "elevation" && o.band) return usage("--band applies to import elevation only");
     if (o.crs && (o.assignCrs || o.toCrs))

@@ -117,9 +117,10 @@ int runInfoCommand(const std::vector<std::string>& args) {
                     g.levels.back().pixelXSize);
     for (const auto& l : info.layers) {
         if (l.kind == io::LayerKind::Sequence) continue;
-        std::printf("layer:   %s [%s] %lld tiles, %d levels, values %.3f..%.3f %s\n",
+        // Units only when the store records some (an empty "()" reads as a bug).
+        std::printf("layer:   %s [%s] %lld tiles, %d levels, values %.3f..%.3f%s%s\n",
                     l.name.c_str(), kindName(l.kind), (long long)l.tileCount, l.levels, l.minValue,
-                    l.maxValue, l.units.c_str());
+                    l.maxValue, l.units.empty() ? "" : " ", l.units.c_str());
     }
     for (const auto& s : info.sequences) {
         std::printf("sequence: %s%s %zu frames", s.name.c_str(),
@@ -127,7 +128,8 @@ int runInfoCommand(const std::vector<std::string>& args) {
         if (!s.frameTimes.empty())
             std::printf(", %s .. %s", formatIso8601(s.frameTimes.front()).c_str(),
                         formatIso8601(s.frameTimes.back()).c_str());
-        std::printf(" (%s)\n", s.units.c_str());
+        if (!s.units.empty()) std::printf(" (%s)", s.units.c_str());
+        std::printf("\n");
     }
     return kExitOk;
 }

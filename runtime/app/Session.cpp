@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <map>
 
+#include "config/DataUnits.h"
 #include "config/MeaningCheck.h"
 #include "config/ScenarioReader.h"
 #include "runtime/color/Legend.h"
@@ -60,12 +61,15 @@ Result<std::unique_ptr<Session>> Session::open(
         }
         readers[id] = std::move(*r.value);
     }
-    Diagnostics meaning = config::checkMeaning(*s->mScenario, [&](const std::string& id) {
+    const config::StoreLookup lookup = [&](const std::string& id) -> const io::StoreInfo* {
         auto it = readers.find(id);
         return it == readers.end() ? nullptr : &it->second->info();
-    });
+    };
+    Diagnostics meaning = config::checkMeaning(*s->mScenario, lookup);
     diags.append(meaning);
     if (diags.hasErrors()) return diags;
+    // Legends of transfer functions without units show the units the stores record.
+    config::adoptDataUnits(*s->mScenario, lookup);
     if (adjust) adjust(*s->mScenario);
     for (const auto& d : diags.items()) KIOSK_LOG_WARN(kTag, "%s", d.format().c_str());
 

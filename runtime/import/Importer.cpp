@@ -1,11 +1,12 @@
 #include "runtime/import/Importer.h"
 
+#include "runtime/core/Progress.h"
 #include "runtime/core/TimeParse.h"
 #include "runtime/import/CfTime.h"
 #include "runtime/import/GdalRaster.h"
-#include "runtime/core/Progress.h"
 #include "runtime/import/GeoTarget.h"
 #include "runtime/import/Pyramid.h"
+#include "runtime/import/SourceUnits.h"
 #include "runtime/import/SwwMesh.h"
 #include "runtime/import/TempStore.h"
 #include "runtime/io/StoreWriter.h"
@@ -38,7 +39,8 @@ std::string lowerExt(const std::string& path) {
 Result<double> unitFactor(GDALDatasetH ds, int band, const ImportOptions& o,
                           const std::string& src) {
     Diagnostics d;
-    std::string declared = GDALGetRasterUnitType(GDALGetRasterBand(ds, band));
+    const std::string stated = GDALGetRasterUnitType(GDALGetRasterBand(ds, band));
+    std::string declared = stated;
     for (char& c : declared) c = char(std::tolower(static_cast<unsigned char>(c)));
     auto isFeet = [](const std::string& u) {
         return u == "ft" || u == "foot" || u == "feet" || u == "us survey foot" ||
@@ -61,8 +63,13 @@ Result<double> unitFactor(GDALDatasetH ds, int band, const ImportOptions& o,
     }
     const double usFoot = 1200.0 / 3937.0;
     if (srcFeet) return declared.find("us") != std::string::npos ? usFoot : 0.3048;
-    if (o.units && *o.units == "ft") return 0.3048;
-    return 1.0;
+    // A unit that is no length (a temperature grid given as a DEM?) is read as metres, but said.
+    if (!o.units && !srcMetre && !declared.empty())
+        d.warning("IMPORT_UNITS_ASSUMED", src, "",
+                  "source states its values are in '" + stated +
+                      "', not a length; read as metres (--units m or ft says which)");
+    if (o.units && *o.units == "ft") return Result<double>(0.3048, d);
+    return Result<double>(1.0, d);
 }
 
 void windowExtent(const io::TileGrid& g, const GridWindow& w, double& x0, double& y0, double& x1,
@@ -232,7 +239,7 @@ static Diagnostics importElevationImpl(const std::string& source, const ImportOp
     }
     range->first *= std::fabs(f);
     range->second *= std::fabs(f);
-    Diagnostics warnings;
+    Diagnostics warnings = factor.diagnostics;
     Progress progress(o.quiet);
     Diagnostics d = withTempStore(o.store, [&](io::StoreWriter& w) -> Diagnostics {
         PlaceOptions po = placeOptions(o, source);
@@ -805,11 +812,12 @@ static Diagnostics importSequenceImpl(const std::vector<std::string>& sources,
         Diagnostics e;
         io::SequenceSpec spec;
         spec.name = o.name;
-        spec.units = o.units.value_or(categorical ? "class" : "");
         spec.variable = o.variable.empty() ? (anyCsv ? "burn_state" : "value") : o.variable;
         spec.categorical = categorical;
         spec.description = "imported from " + fs::path(frames->front().file).filename().string();
-        e.append(w.createSequence(spec));
+        SequenceUnits units(o.units, w.sequenceUnits(o.name), categorical, o.name,
+                            o.store.string());
+        e.append(units.start());
         if (e.hasErrors()) return e;
         const auto existing = w.sequenceTimes(o.name);
         if (!existing.empty() && *frames->front().time <= existing.back()) {
@@ -848,6 +856,18 @@ static Diagnostics importSequenceImpl(const std::vector<std::string>& sources,
                 auto r = openRaster(fr.open);
                 if (!r) return r.diagnostics;
                 ds = std::move(*r);
+                const std::string where =
+                    o.variable.empty() ? "band " + std::to_string(fr.band) : o.variable;
+                auto declared = bandUnits(raw(ds), fr.band, fr.file, where);
+                if (!declared && !o.units) return declared.diagnostics;
+                e.append(units.frame(declared ? *declared : "", fr.file, where));
+                if (e.hasErrors()) return e;
+            }
+            // The sequence records the units its first frame states (or --units).
+            if (i == 0) {
+                spec.units = units.units();
+                e.append(w.createSequence(spec));
+                if (e.hasErrors()) return e;
             }
             auto range = bandRange(raw(ds), fr.band);
             if (!range) {

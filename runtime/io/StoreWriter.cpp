@@ -505,6 +505,14 @@ std::vector<double> StoreWriter::sequenceTimes(const std::string& sequence) {
     return out;
 }
 
+std::optional<std::string> StoreWriter::sequenceUnits(const std::string& sequence) {
+    auto st = mDb.prepare("SELECT units FROM kiosk_sequences WHERE name = ?");
+    if (!st) return std::nullopt;
+    st->bind(1, std::string_view(sequence));
+    if (st->step() != SQLITE_ROW) return std::nullopt;
+    return st->columnText(0);
+}
+
 Result<RasterTile> StoreWriter::readScalarTile(const std::string& table, const TileId& id) {
     TileQueries::ScalarMeta meta;
     if (mGrid) {

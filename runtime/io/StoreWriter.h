@@ -72,6 +72,8 @@ public:
                                  const std::string& table, double minValue, double maxValue);
     /** @brief Frame times already stored for a sequence (to append in order). */
     std::vector<double> sequenceTimes(const std::string& sequence);
+    /** @brief Units of a sequence already in the store; nullopt when there is no such sequence. */
+    std::optional<std::string> sequenceUnits(const std::string& sequence);
 
     /** @brief Read back a tile written earlier in this transaction (pyramid building). */
     Result<RasterTile> readScalarTile(const std::string& table, const TileId& id);

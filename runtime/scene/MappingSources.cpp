@@ -1,46 +1,35 @@
 #include "runtime/scene/MappingSources.h"
 
-#include <OpenImageIO/imageio.h>
+#include "runtime/io/ImageCodec.h"
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <map>
 
 namespace kiosk::scene {
 
 Result<MappingImage> loadMappingImage(const std::filesystem::path& file) {
     Diagnostics d;
-    auto in = OIIO::ImageInput::open(file.string());
+    std::ifstream in(file, std::ios::binary);
     if (!in) {
-        d.error("MAPPING_IMAGE", file.string(), "", "cannot open image: " + OIIO::geterror());
+        d.error("MAPPING_IMAGE", file.string(), "", "cannot open image");
         return d;
     }
-    const OIIO::ImageSpec& spec = in->spec();
-    const int w = spec.width, h = spec.height, nc = spec.nchannels;
-    if (w < 1 || h < 1 || nc < 1 || nc > 4) {
+    const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(in),
+                                          std::istreambuf_iterator<char>()};
+    auto decoded = io::decodeRgba8(bytes.data(), bytes.size(), "");
+    if (!decoded) {
+        const Diagnostic* e = decoded.diagnostics.firstError();
         d.error("MAPPING_IMAGE", file.string(), "",
-                "expected a 2D image with 1 to 4 channels, got " + std::to_string(nc));
+                e ? e->message : std::string("cannot decode image"));
         return d;
     }
-    std::vector<std::uint8_t> px(std::size_t(w) * std::size_t(h) * std::size_t(nc));
-    if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::UINT8, px.data())) {
-        d.error("MAPPING_IMAGE", file.string(), "", "cannot read pixels: " + in->geterror());
-        return d;
-    }
-    in->close();
     MappingImage img;
-    img.width = w;
-    img.height = h;
-    img.rgba.resize(std::size_t(w) * std::size_t(h) * 4);
-    for (std::size_t i = 0; i < std::size_t(w) * std::size_t(h); ++i) {
-        const std::uint8_t* s = &px[i * std::size_t(nc)];
-        std::uint8_t* o = &img.rgba[i * 4];
-        // Grey (+alpha) images spread to RGB; missing alpha is opaque.
-        o[0] = s[0];
-        o[1] = nc >= 3 ? s[1] : s[0];
-        o[2] = nc >= 3 ? s[2] : s[0];
-        o[3] = nc == 4 ? s[3] : (nc == 2 ? s[1] : 255);
-    }
+    img.width = decoded->width;
+    img.height = decoded->height;
+    img.rgba = std::move(decoded->samples8);
     return img;
 }
 

@@ -9,7 +9,9 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <sstream>
 #include <thread>
 
 namespace kiosk::app {
@@ -135,6 +137,38 @@ TEST_F(OverlaySettings, ProjectiveMappingTransferFunctionHasALegend) {
     EXPECT_GT(d.x0, kW / 2);
     EXPECT_GT(d.y0, kH / 2);
     EXPECT_GT(d.count, 2000);  // a panel, not a stray pixel
+}
+
+// A transfer function without "units" shows the units the store records for the data it
+// colours (the demo's flood_depth is imported with --units m): its legend is the picture of the
+// one that states "m", and unlike one whose units are cleared after opening.
+TEST_F(OverlaySettings, LegendShowsTheStoresUnitsWhenTheScenarioGivesNone) {
+    std::ifstream in(kDemo);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    std::string text = ss.str();
+    const std::string store = "../../data/generated/rainier.gpkg";
+    text.replace(text.find(store), store.size(), fs::absolute("data/generated/rainier.gpkg"));
+    const fs::path dir = fs::temp_directory_path() / "geokiosk-legend-units";
+    fs::create_directories(dir);
+    std::ofstream(dir / "stated.json") << text;
+    const std::string depthUnits = R"x("label": "Water depth (SYNTHETIC)",
+      "units": "m",)x";
+    const auto at = text.find(depthUnits);
+    ASSERT_NE(at, std::string::npos) << "the demo's depth transfer function changed";
+    text.replace(at, depthUnits.size(), R"x("label": "Water depth (SYNTHETIC)",)x");
+    std::ofstream(dir / "none.json") << text;
+
+    const gl::Image stated = frame((dir / "stated.json").string(), "overview", nullptr);
+    const gl::Image adopted = frame((dir / "none.json").string(), "overview", nullptr);
+    const gl::Image cleared =
+        frame((dir / "none.json").string(), "overview",
+              [](config::Scenario& s) { s.transferFunctions["depth"].function.units.clear(); });
+    EXPECT_TRUE(diff(stated, adopted).empty());
+    const DiffBox d = diff(adopted, cleared);
+    ASSERT_FALSE(d.empty()) << "the legend shows no units";
+    EXPECT_GT(d.x0, kW / 2);  // in the legend's title, bottom right
+    EXPECT_GT(d.y0, kH / 2);
 }
 
 }  // namespace
