@@ -1,5 +1,6 @@
 #include "runtime/import/GdalRaster.h"
 
+#include "runtime/import/Curvilinear.h"
 #include "runtime/import/GeoTarget.h"
 
 #include <cpl_conv.h>
@@ -88,9 +89,11 @@ Result<GdalDataset> warpToVrt(GDALDatasetH src, const std::vector<std::string>& 
 }
 
 // GDAL's suggested output size of warping `ds` into `dstWkt` (what gdalwarp would create).
-bool suggestedWarpSize(GDALDatasetH ds, const std::string& dstWkt, int& nx, int& ny) {
+bool suggestedWarpSize(GDALDatasetH ds, const std::string& dstWkt, int& nx, int& ny,
+                       const std::vector<std::string>& transformerOptions) {
     CPLStringList topts;
     topts.SetNameValue("DST_SRS", dstWkt.c_str());
+    for (const auto& o : transformerOptions) topts.AddString(o.c_str());
     void* tr = GDALCreateGenImgProjTransformer2(ds, nullptr, topts.List());
     if (!tr) return false;
     double ogt[6], ext[4];
@@ -226,9 +229,11 @@ Result<PlannedSource> planGrid(GdalDataset source, const PlaceOptions& options, 
     PlannedSource out;
     PlaceOptions opt = options;
     std::optional<StoreCrs> srcCrs;
-    auto geo = georeference(std::move(source), opt, srcCrs, out.placed.chain);
+    std::optional<Geolocation> geoloc;
+    auto geo = georeference(std::move(source), opt, srcCrs, out.placed.chain, &geoloc);
     if (!geo) return geo.diagnostics;
     GDALDatasetH ds = *geo;
+    const std::int64_t geolocBytes = geoloc ? geoloc->bytes : 0;
 
     StoreCrs target;
     bool warp = false;
@@ -244,13 +249,14 @@ Result<PlannedSource> planGrid(GdalDataset source, const PlaceOptions& options, 
         target = *c;
         warp = !sameCrs(srcCrs->wkt, target.wkt);
     } else if (srcCrs && isGeographicCrs(srcCrs->wkt)) {
-        target = autoTargetCrs(lonLatExtent(ds));
+        target = autoTargetCrs(geoloc ? geoloc->extent : lonLatExtent(ds));
         warp = true;
     } else if (srcCrs) {
         target = *srcCrs;
     } else {
         target = localCrs();
     }
+    if (geoloc) warp = true;  // a curvilinear grid has no geotransform: always resampled
     double gt[6];
     GDALGetGeoTransform(ds, gt);
     const bool square = gt[2] == 0 && gt[4] == 0 && gt[5] < 0 &&
@@ -270,7 +276,13 @@ Result<PlannedSource> planGrid(GdalDataset source, const PlaceOptions& options, 
             // diagonal); a source pixel size in degrees must never be used with a metre CRS.
             args.insert(args.end(), {"-t_srs", target.wkt});
             int nx = 0, ny = 0;
-            if (!suggestedWarpSize(ds, target.wkt, nx, ny)) {
+            if (geoloc) {
+                const auto to = geolocationWarpArgs(*geoloc);
+                args.insert(args.end(), to.begin(), to.end());
+            }
+            if (!suggestedWarpSize(
+                    ds, target.wkt, nx, ny,
+                    geoloc ? geolocationTransformerOptions(*geoloc) : std::vector<std::string>())) {
                 d.error("IMPORT_WARP", opt.sourceName, "",
                         gdalError("cannot transform the source into " + target.name));
                 return d;
@@ -282,7 +294,7 @@ Result<PlannedSource> planGrid(GdalDataset source, const PlaceOptions& options, 
             outW = std::int64_t(std::ceil(std::fabs(gt[1]) * GDALGetRasterXSize(ds) / p));
             outH = std::int64_t(std::ceil(std::fabs(gt[5]) * GDALGetRasterYSize(ds) / p));
         }
-        d = checkImportBudget(outW, outH, tileSize, 0, opt.memoryBudget, opt.sourceName);
+        d = checkImportBudget(outW, outH, tileSize, geolocBytes, opt.memoryBudget, opt.sourceName);
         if (d.hasErrors()) return d;
         auto w = warpToVrt(ds, args, opt.sourceName);
         if (!w) return w.diagnostics;
@@ -295,7 +307,7 @@ Result<PlannedSource> planGrid(GdalDataset source, const PlaceOptions& options, 
         d.error("IMPORT_NO_GEOREF", opt.sourceName, "", "source has an invalid geotransform");
         return d;
     }
-    d = checkImportBudget(width, height, tileSize, 0, opt.memoryBudget, opt.sourceName);
+    d = checkImportBudget(width, height, tileSize, geolocBytes, opt.memoryBudget, opt.sourceName);
     if (d.hasErrors()) return d;
     int levels = 1;
     while (std::int64_t(tileSize) << (levels - 1) < std::max(width, height)) ++levels;
@@ -320,9 +332,12 @@ Result<PlacedSource> placeOnGrid(GdalDataset source, const io::TileGrid& grid,
     std::optional<StoreCrs> srcCrs;
     PlaceOptions opt = options;
     PlacedSource ps;
-    auto geo = georeference(std::move(source), opt, srcCrs, ps.chain);
+    std::optional<Geolocation> geoloc;
+    auto geo = georeference(std::move(source), opt, srcCrs, ps.chain, &geoloc);
     if (!geo) return geo.diagnostics;
     GDALDatasetH src = *geo;
+    const std::vector<std::string> geolocOptions =
+        geoloc ? geolocationTransformerOptions(*geoloc) : std::vector<std::string>();
     if (opt.toCrs) {
         auto c = crsFromUser(*opt.toCrs, "--to-crs");
         if (!c) return c.diagnostics;
@@ -350,7 +365,8 @@ Result<PlacedSource> placeOnGrid(GdalDataset source, const io::TileGrid& grid,
     double gt[6];
     GDALGetGeoTransform(src, gt);
     const int sw = GDALGetRasterXSize(src), sh = GDALGetRasterYSize(src);
-    const bool same = !srcCrs || sameCrs(srcCrs->wkt, grid.crsWkt);
+    // A curvilinear source has no geotransform: even in the store's CRS it is warped.
+    const bool same = !geoloc && (!srcCrs || sameCrs(srcCrs->wkt, grid.crsWkt));
     if (noCrs)
         ps.warnings.push_back("source has no CRS; assuming the store's (" + grid.crsName + ")");
 
@@ -364,6 +380,7 @@ Result<PlacedSource> placeOnGrid(GdalDataset source, const io::TileGrid& grid,
     } else {
         CPLStringList topts;
         topts.SetNameValue("DST_SRS", grid.crsWkt.c_str());
+        for (const auto& o : geolocOptions) topts.AddString(o.c_str());
         void* tr = GDALCreateGenImgProjTransformer2(src, nullptr, topts.List());
         double ogt[6], ext[4];
         int nx = 0, ny = 0;
@@ -393,8 +410,8 @@ Result<PlacedSource> placeOnGrid(GdalDataset source, const io::TileGrid& grid,
         return d;
     }
     ps.window = w;
-    d = checkImportBudget(w.width(), w.height(), finest.tileWidth, 0, opt.memoryBudget,
-                          opt.sourceName);
+    d = checkImportBudget(w.width(), w.height(), finest.tileWidth, geoloc ? geoloc->bytes : 0,
+                          opt.memoryBudget, opt.sourceName);
     if (d.hasErrors()) return d;
     const double ox = (gt[0] - grid.minX) / p, oy = (grid.maxY - gt[3]) / p;
     const bool aligned = same && gt[2] == 0 && gt[4] == 0 && std::fabs(gt[1] - p) <= 1e-9 * p &&
@@ -427,6 +444,7 @@ Result<PlacedSource> placeOnGrid(GdalDataset source, const io::TileGrid& grid,
         args.insert(args.end(), {"-ot", "Byte", "-dstalpha"});
     else
         args.insert(args.end(), {"-ot", "Float32", "-dstnodata", "nan"});
+    for (const auto& o : geolocOptions) args.insert(args.end(), {"-to", o});
     auto warped = warpToVrt(src, args, opt.sourceName);
     if (!warped) return warped.diagnostics;
     ps.ds = ps.chain.add(std::move(*warped));

@@ -1,5 +1,7 @@
 #include "runtime/import/GeoTarget.h"
 
+#include "runtime/import/Curvilinear.h"
+
 #include <cpl_conv.h>
 #include <cpl_string.h>
 #include <gdal_vrt.h>
@@ -190,12 +192,32 @@ GdalDataset vrtOf(GDALDatasetH src) {
 }  // namespace
 
 Result<GDALDatasetH> georeference(GdalDataset source, PlaceOptions& opt,
-                                  std::optional<StoreCrs>& crs, DatasetChain& chain) {
+                                  std::optional<StoreCrs>& crs, DatasetChain& chain,
+                                  std::optional<Geolocation>* geolocation) {
     Diagnostics d;
     double gt[6];
     GDALDatasetH src = chain.add(std::move(source));
     const bool hasGt = GDALGetGeoTransform(src, gt) == CE_None &&
                        !(gt[0] == 0 && gt[1] == 1 && gt[3] == 0 && gt[5] == 1);
+    if (!hasGt) {
+        // 2-D longitude/latitude arrays locate every pixel: warped through them, never assigned.
+        auto g = geolocationOf(src, opt.memoryBudget, opt.sourceName);
+        if (!g) return g.diagnostics;
+        if (*g) {
+            if (opt.assignCrs) {
+                d.error("IMPORT_BAD_CRS", opt.sourceName, "--assign-crs",
+                        "the source is located by geolocation arrays in " + (*g)->crs.name +
+                            "; --assign-crs does not apply to it")
+                    .hint = "drop --assign-crs (--to-crs chooses the store's CRS)";
+                return d;
+            }
+            if (opt.crs && !opt.toCrs) opt.toCrs = opt.crs;
+            opt.crs.reset();
+            crs = (*g)->crs;
+            if (geolocation) *geolocation = **g;
+            return src;
+        }
+    }
     crs = crsOfDataset(src);
     const bool cfLonLat = !crs && hasGt && hasCfLonLatAxes(src);
     // The old --crs meant "assign" for CRS-less input and "warp to" otherwise.

@@ -49,10 +49,14 @@ Result<GDALDatasetH> normaliseLongitudes(GDALDatasetH ds, DatasetChain& chain,
  * normalised. Resolves the deprecated `opt.crs` into `opt.assignCrs` (CRS-less source) or
  * `opt.toCrs` (source with a CRS, CF lon/lat axes count as one). A CRS-less source on CF lon/lat
  * axes is WGS 84; assigning a projected CRS to such degrees, or a geographic CRS to coordinates
- * outside -180..360 / -90..90, is IMPORT_BAD_CRS.
+ * outside -180..360 / -90..90, is IMPORT_BAD_CRS. A curvilinear source (Curvilinear.h) is
+ * returned as it is, `crs` being its geolocation arrays' and `*geolocation` set: it can only be
+ * warped (and --assign-crs does not apply to it).
  */
+struct Geolocation;
 Result<GDALDatasetH> georeference(GdalDataset source, PlaceOptions& opt,
-                                  std::optional<StoreCrs>& crs, DatasetChain& chain);
+                                  std::optional<StoreCrs>& crs, DatasetChain& chain,
+                                  std::optional<Geolocation>* geolocation = nullptr);
 
 /** @brief Regional limit: a geographic source wider or taller than this goes to a global CRS. */
 constexpr double kRegionalSpanDeg = 20.0;

@@ -91,46 +91,6 @@ void writeLonLatNetCdf(const fs::path& p, double lon0, double lat0, double step,
     nc_close(id);
 }
 
-// Every finest-level sample of a scalar layer, visited with its pixel-centre coordinates.
-void forEachSample(io::StoreReader& r, const std::string& layer,
-                   const std::function<void(double x, double y, float v)>& visit) {
-    const auto& g = r.info().grid;
-    const auto& m = g.levels.back();
-    const int L = g.maxLevel(), t = m.tileWidth;
-    for (int row = 0; row < m.matrixHeight; ++row)
-        for (int col = 0; col < m.matrixWidth; ++col) {
-            auto tile = r.readElevation(layer, TileId{L, col, row});
-            if (!tile) continue;
-            for (int y = 0; y < t; ++y)
-                for (int x = 0; x < t; ++x) {
-                    const float v = tile->at(x, y);
-                    if (std::isnan(v)) continue;
-                    visit(g.minX + ((col * t + x) + 0.5) * m.pixelXSize,
-                          g.maxY - ((row * t + y) + 0.5) * m.pixelYSize, v);
-                }
-        }
-}
-
-// Store CRS -> WGS 84 lon/lat, exact (PROJ), longitudes as they come.
-struct ToLonLat {
-    OGRSpatialReferenceH src = nullptr, dst = nullptr;
-    OGRCoordinateTransformationH ct = nullptr;
-    explicit ToLonLat(const std::string& wkt) {
-        src = OSRNewSpatialReference(wkt.c_str());
-        dst = OSRNewSpatialReference(nullptr);
-        OSRImportFromEPSG(dst, 4326);
-        OSRSetAxisMappingStrategy(src, OAMS_TRADITIONAL_GIS_ORDER);
-        OSRSetAxisMappingStrategy(dst, OAMS_TRADITIONAL_GIS_ORDER);
-        ct = OCTNewCoordinateTransformation(src, dst);
-    }
-    ~ToLonLat() {
-        OCTDestroyCoordinateTransformation(ct);
-        OSRDestroySpatialReference(src);
-        OSRDestroySpatialReference(dst);
-    }
-    bool operator()(double& x, double& y) const { return OCTTransform(ct, 1, &x, &y, nullptr); }
-};
-
 // Run `fn` in a child process whose address space is capped at `limitBytes` (ulimit -v).
 // Returns the child's exit status, or -signal when it died of one.
 int runUnderAddressLimit(std::int64_t limitBytes, const std::function<int()>& fn) {
