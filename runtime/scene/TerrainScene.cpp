@@ -449,6 +449,8 @@ void TerrainScene::update(const math::Camera& camera, double time) {
                         unsigned(k.layer), k.frame, k.id.level, k.id.column, k.id.row);
     }
     const bool requestsPending = !mSelection->requests.empty();
+    // Display walls: the pair shown is the one at the wall's step time (TerrainSceneWall.cpp).
+    applyStepGate(camera, time, wanted);
 
     for (std::size_t i = 0; i < mLayers.size(); ++i) {
         StackLayer& l = mLayers[i];
