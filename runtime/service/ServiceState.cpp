@@ -19,6 +19,8 @@ HealthVerdict evaluateHealth(const ServiceSnapshot& s, double now, double stallS
                       stallSeconds);
         reason = buf;
     }
+    if (!reason.empty() && !s.holding.empty())
+        reason = s.holding + ": " + reason + (s.lastFrameAt >= 0 ? ", last frame kept" : "");
     body["status"] = reason.empty() ? "ok" : "stalled";
     if (!reason.empty()) body["reason"] = reason;
     body["frames"] = s.frames;

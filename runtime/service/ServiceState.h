@@ -51,6 +51,9 @@ struct ServiceSnapshot {
     std::uint64_t storeSwaps = 0;  ///< stores replaced on disk and taken over
     std::vector<std::pair<std::string, std::uint64_t>> storeFiles;  ///< path, inode on screen
     std::vector<std::string> warnings;  ///< e.g. skipped playlist entries (shown by /health)
+    /** @brief Why the loop keeps the last frame on purpose (empty: it does not), e.g. a wall
+     * follower whose leader went silent; /health names it instead of a bare stall. */
+    std::string holding;
 };
 
 /** @brief The mailbox between the frame loop (writer) and the HTTP thread (reader). */
