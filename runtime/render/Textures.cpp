@@ -1,5 +1,6 @@
 #include "runtime/render/Textures.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -53,6 +54,44 @@ gl::Texture makeScalarTexture(int width, int height, const float* values,
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RG16F, width, height, 0, GL_RG, GL_FLOAT, rg.data());
     setLinearClamp();
+    return tex;
+}
+
+gl::Texture makeNormalMapTexture(int width, int height, const std::uint8_t* rgba) {
+    // Half floats hold every k/255 to 2^-11 relative, well inside the 8-bit step.
+    std::vector<float> f(std::size_t(width) * std::size_t(height) * 4);
+    for (std::size_t i = 0; i < f.size(); ++i) f[i] = float(rgba[i]) * (1.0f / 255.0f);
+    auto tex = gl::Texture::create();
+    glBindTexture(GL_TEXTURE_2D, tex.id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    // Mipmaps built here (2x2 box, as glGenerateMipmap): core ES 3.0 cannot generate them for
+    // RGBA16F, which is filterable but not colour-renderable there.
+    std::vector<float> next;
+    for (int level = 0, w = width, h = height;; ++level) {
+        glTexImage2D(GL_TEXTURE_2D, level, GL_RGBA16F, w, h, 0, GL_RGBA, GL_FLOAT, f.data());
+        if (w == 1 && h == 1) break;
+        const int nw = std::max(1, w / 2), nh = std::max(1, h / 2);
+        next.assign(std::size_t(nw) * std::size_t(nh) * 4, 0.0f);
+        for (int y = 0; y < nh; ++y)
+            for (int x = 0; x < nw; ++x)
+                for (int c = 0; c < 4; ++c) {
+                    float sum = 0.0f;
+                    for (int k = 0; k < 4; ++k) {
+                        const int sx = std::min(w - 1, 2 * x + (k & 1)),
+                                  sy = std::min(h - 1, 2 * y + (k >> 1));
+                        sum += f[(std::size_t(sy) * std::size_t(w) + std::size_t(sx)) * 4 +
+                                 std::size_t(c)];
+                    }
+                    next[(std::size_t(y) * std::size_t(nw) + std::size_t(x)) * 4 + std::size_t(c)] =
+                        0.25f * sum;
+                }
+        f.swap(next);
+        w = nw, h = nh;
+    }
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     return tex;
 }
 
