@@ -49,8 +49,11 @@ struct Terrain {
     double verticalExaggeration = 1.0;
     /** @brief Full: the finest level everywhere with exact meshes (tauGeom/tauTex unused). */
     TerrainReference reference = TerrainReference::Lod;
-    std::int64_t cacheBytes = 512ll << 20;  ///< CPU tile cache budget
-    std::int64_t gpuBytes = 256ll << 20;    ///< resident texture/mesh budget
+    /// CPU tile cache budget; 0 (unset) = sized to the view's working set
+    /// (runtime/scene/CacheBudgets.h)
+    std::int64_t cacheBytes = 0;
+    /// resident texture/mesh budget; 0 (unset) = sized to the view's working set
+    std::int64_t gpuBytes = 0;
     /** @brief Procedural detail near the camera (decoration, labelled; docs/terrain.md §7). */
     bool proceduralDetail = false;
     std::string pointer = "/terrain";

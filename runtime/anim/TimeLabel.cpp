@@ -312,10 +312,15 @@ std::string formatTimeLabel(double epoch, double startEpoch, std::string_view fo
 
 std::string formatElapsed(double seconds) {
     char buf[64];
-    Writer w{buf, sizeof buf};
+    return std::string(buf, formatElapsed(buf, sizeof buf, seconds));
+}
+
+std::size_t formatElapsed(char* out, std::size_t capacity, double seconds) {
+    if (capacity == 0) return 0;
+    Writer w{out, capacity};
     writeElapsed(w, seconds);
-    buf[w.len] = '\0';
-    return std::string(buf, w.len);
+    out[std::min(w.len, capacity - 1)] = '\0';
+    return std::min(w.len, capacity - 1);
 }
 
 Diagnostics validateTimeFormat(std::string_view format, std::string_view file,

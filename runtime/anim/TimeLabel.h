@@ -60,6 +60,8 @@ std::size_t formatTimeLabel(char* out, std::size_t capacity, double epoch, doubl
  * omitted, truncated towards zero), seconds only below one minute.
  */
 std::string formatElapsed(double seconds);
+/** @brief formatElapsed into `out` (NUL-terminated, truncated to capacity); no allocation. */
+std::size_t formatElapsed(char* out, std::size_t capacity, double seconds);
 
 /** @brief ANIM_TIME_FORMAT_UNKNOWN for each unknown `%x` directive, or a trailing lone `%`. */
 Diagnostics validateTimeFormat(std::string_view format, std::string_view file = {},

@@ -18,7 +18,8 @@ std::string usageText() {
 
   play SCENARIO [--display auto|kms|x11|wayland|headless] [--size WxH] [--windowed]
                 [--max-fps N] [--frames N] [--connector NAME|INDEX] [--drm-device PATH]
-        show a scenario fullscreen until SIGINT/SIGTERM (or N frames)
+                [--stats STATS.json]
+        show a scenario fullscreen until SIGINT/SIGTERM (or N frames); --max-fps 0: unthrottled
   render SCENARIO --out OUT [--time T | --from T0 --to T1 --fps N] [--size WxH]
                   [--viewpoint NAME] [--stats STATS.json]
         render offscreen: OUT is x.png (one frame) or dir/ (dir/000001.png ...)
@@ -29,6 +30,7 @@ std::string usageText() {
                      [--altitude DEG] [--variant default|multidirectional|combined] [--shadows]
                      [--normals]
         build or extend a store (a GeoPackage) from GDAL-readable rasters and model output
+        (runs geokiosk-import, installed beside geokiosk)
   validate SCENARIO...
         check scenarios against the schema and their stores
   info STORE [--json]
@@ -73,7 +75,7 @@ int dispatch(const std::vector<std::string>& args) {
 }  // namespace
 
 int runCli(const std::vector<std::string>& args) {
-    // Third-party code may throw (std::filesystem, nlohmann, OIIO); a user must still get one
+    // Third-party code may throw (std::filesystem, nlohmann); a user must still get one
     // line and a documented status, never an abort.
     try {
         return dispatch(args);

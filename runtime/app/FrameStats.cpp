@@ -23,7 +23,8 @@ std::string FrameStats::toJson() const {
     std::uint64_t missingFrames = 0, heldTotal = 0, hitsTotal = 0;
     auto& frames = j["frames"];
     frames = nlohmann::json::object();
-    for (const auto& f : mFrames) {
+    for (std::size_t k = 0; k < mFrames.size(); ++k) {
+        const FrameRecord& f = mFrames[(mNext + k) % mFrames.size()];  // oldest first
         ms.push_back(f.frameMs);
         frames["frame_ms"].push_back(f.frameMs);
         frames["tiles_drawn"].push_back(f.tilesDrawn);
@@ -46,12 +47,17 @@ std::string FrameStats::toJson() const {
         frames["render_scale"].push_back(f.renderScale);
     }
     j["summary"] = {{"frames", mFrames.size()},
-                    {"frame_ms", {{"median", percentile(ms, 50)},
-                                  {"p95", percentile(ms, 95)},
-                                  {"p99", percentile(ms, 99)}}},
+                    {"frame_ms",
+                     {{"median", percentile(ms, 50)},
+                      {"p95", percentile(ms, 95)},
+                      {"p99", percentile(ms, 99)}}},
                     {"sequence_missing_frames", missingFrames},
                     {"held_frames", heldTotal},
-                    {"prefetch_hits", hitsTotal}};
+                    {"prefetch_hits", hitsTotal},
+                    {"frames_dropped", mDropped}};
+    auto& budgets = j["budgets"];
+    budgets = nlohmann::json::object();
+    for (const auto& [name, value] : mBudgets) budgets[name] = value;
     return j.dump(1);
 }
 

@@ -1,10 +1,12 @@
 #pragma once
 
+#include "runtime/core/Diagnostics.h"
+
 #include <cstdint>
 #include <filesystem>
+#include <string>
+#include <utility>
 #include <vector>
-
-#include "runtime/core/Diagnostics.h"
 
 namespace kiosk::app {
 
@@ -47,14 +49,40 @@ double percentile(std::vector<double> values, double p);
 class FrameStats {
 public:
     explicit FrameStats(std::size_t reserve = 4096) { mFrames.reserve(reserve); }
-    void add(const FrameRecord& r) { mFrames.push_back(r); }
+    /**
+     * @brief Keep only the newest `window` records (`play` may run for weeks): the oldest is
+     * overwritten once the window is full, so memory stays bounded and add() never allocates.
+     * summary.frames_dropped counts the overwritten ones.
+     */
+    void keepNewest(std::size_t window) {
+        mWindow = window;
+        mFrames.reserve(window);
+    }
+    void add(const FrameRecord& r) {
+        if (mWindow > 0 && mFrames.size() >= mWindow) {
+            mFrames[mNext] = r;
+            mNext = (mNext + 1) % mFrames.size();
+            ++mDropped;
+            return;
+        }
+        mFrames.push_back(r);
+    }
+    /** @brief Records in storage order (chronological unless the window wrapped). */
     const std::vector<FrameRecord>& frames() const noexcept { return mFrames; }
-    /** @brief JSON object: per-frame arrays plus summary {median,p95,p99} of frame_ms. */
+    /** @brief Named byte/time budgets in effect (cache, uploads, prefetch), as `budgets` in JSON.
+     */
+    void setBudgets(std::vector<std::pair<std::string, double>> budgets) {
+        mBudgets = std::move(budgets);
+    }
+    /** @brief JSON object: per-frame arrays, summary {median,p95,p99} of frame_ms, budgets. */
     std::string toJson() const;
     bool write(const std::filesystem::path& path, Diagnostics& diags) const;
 
 private:
     std::vector<FrameRecord> mFrames;
+    std::size_t mWindow = 0, mNext = 0;
+    std::uint64_t mDropped = 0;
+    std::vector<std::pair<std::string, double>> mBudgets;
 };
 
 }  // namespace kiosk::app

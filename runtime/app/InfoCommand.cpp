@@ -5,6 +5,8 @@
 #include "runtime/core/ExitCode.h"
 #include "runtime/core/TimeParse.h"
 #include "runtime/io/StoreReader.h"
+#include "runtime/loader/TileLoader.h"
+#include "runtime/scene/CacheBudgets.h"
 
 #include <nlohmann/json.hpp>
 
@@ -25,6 +27,23 @@ const char* kindName(io::LayerKind k) {
             return "sequence_frame";
     }
     return "?";
+}
+
+/** @brief The budgets a scenario over this store gets by default (docs/performance.md). */
+nlohmann::json budgetsOf(const io::TileGrid& g) {
+    using D = scene::CacheDefaults;
+    const std::int64_t tw = g.levels.empty() ? 0 : g.levels.back().tileWidth;
+    const std::int64_t th = g.levels.empty() ? 0 : g.levels.back().tileHeight;
+    return {{"cache", "sized to the view's working set (terrain.cacheBytes/gpuBytes override)"},
+            {"working_set_margin", D::kWorkingSetMargin},
+            {"cache_cpu_floor_bytes", D::kFloorCpuBytes},
+            {"cache_gpu_floor_bytes", D::kFloorGpuBytes},
+            {"upload_bytes_per_frame", D::kUploadBytesPerFrame},
+            {"upload_ms_per_frame", D::kUploadMsPerFrame},
+            {"loader_max_in_flight", loader::LoaderOptions{}.maxInFlight},
+            // What one tile costs resident: RGBA8 with mipmaps; sequence frames as RG16F posts.
+            {"imagery_tile_gpu_bytes", tw * th * 4 * 4 / 3},
+            {"sequence_tile_gpu_bytes", (tw + 1) * (th + 1) * 4}};
 }
 
 }  // namespace
@@ -105,6 +124,7 @@ int runInfoCommand(const std::vector<std::string>& args) {
             j["sequences"].push_back(sj);
         }
         j["sequence_tiles"] = frameTiles;
+        j["budgets"] = budgetsOf(g);
         std::printf("%s\n", j.dump(2).c_str());
         return kExitOk;
     }
@@ -131,6 +151,17 @@ int runInfoCommand(const std::vector<std::string>& args) {
         if (!s.units.empty()) std::printf(" (%s)", s.units.c_str());
         std::printf("\n");
     }
+    const nlohmann::json b = budgetsOf(g);
+    std::printf(
+        "budgets: cache sized to the view's working set x%.1f (at least %.0f MiB CPU, %.0f MiB "
+        "GPU; terrain.cacheBytes/gpuBytes override), uploads %.0f MiB / %.0f ms per frame, "
+        "%d tiles in flight; per tile: imagery %lld B, sequence frame %lld B\n",
+        b["working_set_margin"].get<double>(), b["cache_cpu_floor_bytes"].get<double>() / 1048576.0,
+        b["cache_gpu_floor_bytes"].get<double>() / 1048576.0,
+        b["upload_bytes_per_frame"].get<double>() / 1048576.0,
+        b["upload_ms_per_frame"].get<double>(), b["loader_max_in_flight"].get<int>(),
+        b["imagery_tile_gpu_bytes"].get<long long>(),
+        b["sequence_tile_gpu_bytes"].get<long long>());
     return kExitOk;
 }
 

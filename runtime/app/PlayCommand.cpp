@@ -75,15 +75,18 @@ int usage(const std::string& message) {
     return kExitUsage;
 }
 
-/** Modification stamps of the scenario and everything it includes. */
-std::vector<std::filesystem::file_time_type> stamps(
-    const std::vector<std::filesystem::path>& files) {
-    std::vector<std::filesystem::file_time_type> out;
-    for (const auto& f : files) {
+/** `--stats` without `--frames` keeps the newest this many frames (5 min at 60 fps, ~2 MB). */
+constexpr std::size_t kStatsWindow = 18000;
+
+/** Modification stamps of the scenario and everything it includes (into `out`, reused: the
+ * poll runs in the frame loop, which must not allocate once running). */
+void stamps(const std::vector<std::filesystem::path>& files,
+            std::vector<std::filesystem::file_time_type>& out) {
+    out.resize(files.size());
+    for (std::size_t i = 0; i < files.size(); ++i) {
         std::error_code ec;
-        out.push_back(std::filesystem::last_write_time(f, ec));
+        out[i] = std::filesystem::last_write_time(files[i], ec);
     }
-    return out;
 }
 
 /** A briefing plays its chapters instead of the clock (and starts on its first chapter). */
@@ -144,8 +147,9 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     if (auto f = args.value("max-fps")) {
         char* end = nullptr;
         maxFps = std::strtod(f->c_str(), &end);
-        if (end == f->c_str() || *end || !(maxFps > 0))
-            return usage("--max-fps wants a positive number");
+        // 0 = unthrottled (as fast as the display presents).
+        if (end == f->c_str() || *end || !(maxFps >= 0) || !std::isfinite(maxFps))
+            return usage("--max-fps wants a number >= 0 (0: unthrottled)");
     }
     std::optional<double> targetFps;
     if (auto f = args.value("target-fps")) {
@@ -209,9 +213,15 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     anim::FrameGovernor governor = makeGovernor(*session, targetFps);
     TestFrameCost testCost;
     std::optional<FrameStats> stats;
-    if (args.value("stats")) stats.emplace();
+    if (args.value("stats")) {
+        // Preallocated: recording never allocates in the frame loop. Without --frames only the
+        // newest kStatsWindow frames are kept (a kiosk plays for weeks).
+        stats.emplace(frameLimit > 0 ? std::size_t(frameLimit) : 0);
+        if (frameLimit <= 0) stats->keepNewest(kStatsWindow);
+    }
     auto watched = session->scenario().sourceFiles;
-    auto watchedStamps = stamps(watched);
+    std::vector<std::filesystem::file_time_type> watchedStamps, current;
+    stamps(watched, watchedStamps);
     double lastPoll = wall.now(), last = wall.now();
     platform::InputState input;
     std::optional<math::Viewpoint> manual;  // set while the user steers the camera
@@ -237,7 +247,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             if (kiosk->keepsDataTime()) clock.seek(was);
             scenarioPath = kiosk->currentScenario();
             watched = session->scenario().sourceFiles;
-            watchedStamps = stamps(watched);
+            stamps(watched, watchedStamps);
             manual.reset();
         }
         session->setCurtain(kiosk->curtain());
@@ -247,7 +257,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
 
         if (now - lastPoll >= kReloadPollSeconds) {
             lastPoll = now;
-            auto current = stamps(watched);
+            stamps(watched, current);
             if (current != watchedStamps) {
                 watchedStamps = current;
                 auto next = kiosk->reopen(*caps);  // same file, with the kiosk's budgets
@@ -257,7 +267,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
                     briefing = makeBriefing(*session);
                     governor = makeGovernor(*session, targetFps);
                     watched = session->scenario().sourceFiles;
-                    watchedStamps = stamps(watched);
+                    stamps(watched, watchedStamps);
                     KIOSK_LOG_INFO(kTag, "%s: reloaded", scenarioPath.c_str());
                     kiosk->noteReload(true);
                 } else {
@@ -356,6 +366,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     }
     kiosk->service().stopping();
     if (stats) {
+        stats->setBudgets(session->budgets());
         Diagnostics d;
         if (!stats->write(*args.value("stats"), d)) {
             printDiagnostics(d);

@@ -249,6 +249,7 @@ int runRenderCommand(const std::vector<std::string>& argv) {
     }
     progress.finish();
     if (auto statsPath = args.value("stats")) {
+        stats.setBudgets(s.budgets());
         Diagnostics d;
         if (!stats.write(*statsPath, d)) {
             printDiagnostics(d);

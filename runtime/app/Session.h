@@ -13,6 +13,7 @@
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/anim/TimeLabel.h"
 #include "runtime/app/FrameStats.h"
+#include "runtime/color/Legend.h"
 #include "runtime/core/Result.h"
 #include "runtime/gl/Context.h"
 #include "runtime/render/OverlayLayout.h"
@@ -73,6 +74,8 @@ public:
     int chapterIndex() const noexcept { return mChapter; }
     /** @brief The briefing's chapters in numbers (data spans, playback seconds, pauses). */
     const std::vector<anim::ChapterSpan>& chapterSpans() const noexcept { return mChapterSpans; }
+    /** @brief Budgets in effect (cache, uploads, prefetch) for `--stats`. */
+    std::vector<std::pair<std::string, double>> budgets() const { return mScene->budgets(); }
 
     /** @brief Update tiles for the view and draw terrain + overlays into the bound framebuffer. */
     FrameRecord drawFrame(const math::Camera& camera, double time, int width, int height);
@@ -101,6 +104,11 @@ private:
     std::optional<render::OverlayRenderer> mOverlay;
     int mOverlayFontPx = 0;
     std::string mNotice;
+    /// the legend title/ticks/patches below were made for this transfer function
+    const config::TransferFunctionDef* mLegendFor = nullptr;
+    std::string mLegendTitle;
+    std::vector<color::LegendTick> mLegendTicks;
+    std::vector<color::LegendPatch> mLegendPatches;
     float mCurtain = 0.0f;
     anim::CameraPath mPath;
     anim::TimeZone mZone;

@@ -72,13 +72,21 @@ void Session::drawOverlays(double time, int width, int height) {
     const bool buffering = frameInfo.holdingSequence;
     if (buffering && !std::isnan(frameInfo.heldDataTime)) time = frameInfo.heldDataTime;
     if (ov.timeLabel.enabled && mEnd > mStart) {
-        char buf[128];
-        anim::formatTimeLabel(buf, sizeof buf, time, mStart, ov.timeLabel.format, mZone);
-        std::string label = buf;
-        if (buffering) label += "  buffering";
-        if (ov.timeLabel.showOffset && label.find("T+") == std::string::npos &&
-            label.find("T-") == std::string::npos)
-            label += "  (" + anim::formatElapsed(time - mStart) + ")";
+        // Formatted into fixed buffers: the label changes every frame and the frame loop must
+        // not allocate (tests/scenario/FrameAllocGLTest.cpp).
+        char label[192];
+        const std::size_t n =
+            anim::formatTimeLabel(label, 128, time, mStart, ov.timeLabel.format, mZone);
+        std::size_t len = std::min<std::size_t>(n, 127);
+        if (buffering)
+            len += std::size_t(std::snprintf(label + len, sizeof label - len, "  buffering"));
+        const std::string_view shown(label, len);
+        if (ov.timeLabel.showOffset && shown.find("T+") == std::string_view::npos &&
+            shown.find("T-") == std::string_view::npos) {
+            char elapsed[64];
+            anim::formatElapsed(elapsed, sizeof elapsed, time - mStart);
+            std::snprintf(label + len, sizeof label - len, "  (%s)", elapsed);
+        }
         const float w = o.measure(label) + 24.0f;
         const render::Box b = mLayout.place(anchorOf(ov.timeLabel.position), w, line + 16);
         o.rect(b.x, b.y, b.w, b.h, kPanel);
@@ -105,13 +113,19 @@ void Session::drawOverlays(double time, int width, int height) {
     if (ov.legend.enabled) drawLegend(ov.legend, width, height);
     // Layer problems are always shown: an operator must see why a layer is missing.
     const render::Anchor statusAt = anchorOf(ov.status.position);
-    auto statusLine = [&](const std::string& text, const glm::vec4& color) {
+    auto statusLine = [&](std::string_view text, const glm::vec4& color) {
         const render::Box b = mLayout.place(statusAt, o.measure(text) + 16, line + 6);
         o.rect(b.x, b.y, b.w, b.h, kPanel);
         o.text(b.x + 8, b.y + line - 4, text, color);
     };
-    if (!mNotice.empty())
-        statusLine(mNotice.size() > 160 ? mNotice.substr(0, 157) + "..." : mNotice, kWarn);
+    // Status texts go through fixed buffers (no allocation per frame), long ones shortened.
+    char text[192];
+    if (!mNotice.empty()) {
+        const bool cut = mNotice.size() > 160;
+        std::snprintf(text, sizeof text, "%.*s%s", cut ? 157 : 160, mNotice.c_str(),
+                      cut ? "..." : "");
+        statusLine(text, kWarn);
+    }
     // Procedural detail is decoration: labelled whenever it is on screen (docs/terrain.md §7).
     if (mScene->frameInfo().proceduralDetail)
         statusLine("procedural detail: decoration below the data's resolution", kText);
@@ -121,7 +135,6 @@ void Session::drawOverlays(double time, int width, int height) {
                           (mScene->tauGeom() != sc.terrain.tauGeom ||
                            mScene->tauTex() != sc.terrain.tauTex || mRenderScale < 1.0);
     if (governed) {
-        char text[160];
         std::snprintf(text, sizeof text,
                       "frame-rate governor: tauGeom %.3g px (scenario %.3g), tauTex %.3g px (%.3g), "
                       "render scale %.2f",
@@ -131,9 +144,10 @@ void Session::drawOverlays(double time, int width, int height) {
     }
     for (const auto& st : mScene->layerStatus()) {
         if (st.state == scene::LayerState::Ready && !ov.status.enabled) continue;
-        std::string text = st.id + ": " + scene::layerStateName(st.state);
-        if (!st.message.empty()) text += " - " + st.message;
-        if (text.size() > 140) text = text.substr(0, 137) + "...";
+        const int n = std::snprintf(text, sizeof text, "%s: %s%s%s", st.id.c_str(),
+                                    scene::layerStateName(st.state),
+                                    st.message.empty() ? "" : " - ", st.message.c_str());
+        if (n > 140) std::snprintf(text + 137, sizeof text - 137, "...");
         statusLine(text, st.state == scene::LayerState::Ready ? kDim : kWarn);
     }
     drawCaption(width, height);
@@ -218,15 +232,22 @@ void Session::drawLegend(const config::LegendOverlay& legend, int width, int hei
         texture = it->second.id();
     }
     const color::TransferFunction& tf = def->function;
-    std::string title = !legend.title.empty() ? legend.title
-                        : !def->label.empty() ? def->label
-                                              : def->name;
-    if (!tf.units.empty()) title += " (" + tf.units + ")";
+    // Title, ticks and patches depend only on the scenario: made once, drawn every frame.
+    if (mLegendFor != def) {
+        mLegendFor = def;
+        mLegendTitle = !legend.title.empty() ? legend.title
+                       : !def->label.empty() ? def->label
+                                             : def->name;
+        if (!tf.units.empty()) mLegendTitle += " (" + tf.units + ")";
+        mLegendTicks = color::legendTicks(tf);
+        mLegendPatches = color::legendPatches(tf);
+    }
+    const std::string& title = mLegendTitle;
     const float line = float(o.font().lineHeight());
     const float ascent = float(o.font().ascent());
     const render::Anchor at = anchorOf(legend.position);
     if (tf.discrete()) {
-        auto patches = color::legendPatches(tf);
+        const auto& patches = mLegendPatches;
         float w = o.measure(title);
         for (const auto& p : patches) w = std::max(w, 28 + o.measure(p.label));
         const float h = line * float(patches.size() + 1) + 20;
@@ -250,7 +271,7 @@ void Session::drawLegend(const config::LegendOverlay& legend, int width, int hei
     o.text(b.x + 12, b.y + 8 + ascent, title, kText);
     const float barX = b.x + 12, barY = b.y + 12 + line;
     o.image(barX, barY, barW, barH, texture);
-    for (const auto& t : color::legendTicks(tf)) {
+    for (const auto& t : mLegendTicks) {
         const float tx = barX + float(t.position) * barW;
         o.rect(tx - 0.5f, barY + barH, 1, 5, kText);
         const float tw = o.measure(t.label);

@@ -23,8 +23,9 @@ struct DecodedImage {
 };
 
 /**
- * @brief In-memory image codecs over OpenImageIO (IOProxy, no temporary files).
- * Thread-safe: every call owns its encoder/decoder. Never throws; errors carry code
+ * @brief In-memory image codecs: PNG through libspng, JPEG through libjpeg-turbo (TurboJPEG), no
+ * temporary files. TIFF is recognised by sniffImageFormat but not decoded (GeoPackage tiles are
+ * PNG or JPEG). Thread-safe: every call owns its encoder/decoder. Never throws; errors carry code
  * IMAGE_ENCODE / IMAGE_DECODE and `where` (the caller's tile name).
  */
 Result<std::vector<std::uint8_t>> encodePng16(const std::uint16_t* gray, int width, int height,

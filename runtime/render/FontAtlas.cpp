@@ -98,21 +98,7 @@ float FontAtlas::measure(std::string_view text) const {
 
 std::string utf8ToLatin1(std::string_view s) {
     std::string out;
-    for (std::size_t i = 0; i < s.size();) {
-        const auto c = static_cast<unsigned char>(s[i]);
-        if (c < 0x80) {
-            out += char(c);
-            ++i;
-        } else if ((c & 0xE0) == 0xC0 && i + 1 < s.size()) {
-            const unsigned cp = ((c & 0x1Fu) << 6) | (static_cast<unsigned char>(s[i + 1]) & 0x3Fu);
-            out += cp < 256 ? char(cp) : '?';
-            i += 2;
-        } else {
-            out += '?';
-            ++i;
-            while (i < s.size() && (static_cast<unsigned char>(s[i]) & 0xC0) == 0x80) ++i;
-        }
-    }
+    forEachLatin1(s, [&](unsigned char c) { out += char(c); });
     return out;
 }
 

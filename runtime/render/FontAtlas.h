@@ -45,6 +45,29 @@ private:
     std::array<bool, 256> mHave{};
 };
 
+/**
+ * @brief Call `emit(unsigned char)` with each Latin-1 code point of UTF-8 `s` (others become
+ * '?'): the overlay font's range, decoded in place (overlays run every frame; no string).
+ */
+template <class Emit>
+void forEachLatin1(std::string_view s, Emit&& emit) {
+    for (std::size_t i = 0; i < s.size();) {
+        const auto c = static_cast<unsigned char>(s[i]);
+        if (c < 0x80) {
+            emit(c);
+            ++i;
+        } else if ((c & 0xE0) == 0xC0 && i + 1 < s.size()) {
+            const unsigned cp = ((c & 0x1Fu) << 6) | (static_cast<unsigned char>(s[i + 1]) & 0x3Fu);
+            emit(static_cast<unsigned char>(cp < 256 ? cp : '?'));
+            i += 2;
+        } else {
+            emit(static_cast<unsigned char>('?'));
+            ++i;
+            while (i < s.size() && (static_cast<unsigned char>(s[i]) & 0xC0) == 0x80) ++i;
+        }
+    }
+}
+
 /** @brief Decode UTF-8 to Latin-1 code points (others become '?'); the overlay font's range. */
 std::string utf8ToLatin1(std::string_view text);
 

@@ -68,15 +68,16 @@ void OverlayRenderer::rect(float x, float y, float w, float h, glm::vec4 color) 
 }
 
 float OverlayRenderer::measure(std::string_view utf8) const {
-    return mFont.measure(utf8ToLatin1(utf8));
+    float w = 0;
+    forEachLatin1(utf8, [&](unsigned char c) { w += mFont.glyph(c)->advance; });
+    return w;
 }
 
 float OverlayRenderer::text(float x, float y, std::string_view utf8, glm::vec4 color) {
-    const std::string latin1 = utf8ToLatin1(utf8);
     const float iw = 1.0f / float(mFont.width()), ih = 1.0f / float(mFont.height());
     float pen = x;
-    for (char ch : latin1) {
-        const Glyph* g = mFont.glyph(static_cast<unsigned char>(ch));
+    forEachLatin1(utf8, [&](unsigned char ch) {
+        const Glyph* g = mFont.glyph(ch);
         if (g->width > 0 && g->height > 0) {
             // Snap to whole pixels: nearest-filtered glyphs stay crisp.
             const float gx = std::floor(pen + 0.5f) + float(g->bearingX);
@@ -86,7 +87,7 @@ float OverlayRenderer::text(float x, float y, std::string_view utf8, glm::vec4 c
                  color, 1.0f);
         }
         pen += g->advance;
-    }
+    });
     return pen - x;
 }
 

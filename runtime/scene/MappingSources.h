@@ -18,8 +18,8 @@ struct MappingImage {
 };
 
 /**
- * @brief Read an image file (PNG or anything OpenImageIO reads; 1-4 channels, any bit depth)
- * as RGBA8. Errors: MAPPING_IMAGE naming the file.
+ * @brief Read a PNG or JPEG file (1-4 channels, any bit depth) as RGBA8 (grey spreads to RGB,
+ * missing alpha is opaque). Errors: MAPPING_IMAGE naming the file.
  */
 Result<MappingImage> loadMappingImage(const std::filesystem::path& file);
 

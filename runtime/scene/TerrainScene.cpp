@@ -269,8 +269,14 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
     }
     if (Diagnostics d = s->buildRenderer(); d.hasErrors()) return d;
 
-    terrain::CacheBudget budget{std::size_t(std::max<std::int64_t>(scenario.terrain.cacheBytes, 1 << 20)),
-                                std::size_t(std::max<std::int64_t>(scenario.terrain.gpuBytes, 1 << 20))};
+    // 0 (unset): sized to the view's working set from the first frame on (sizeBudgetsToView).
+    s->mAutoCpu = scenario.terrain.cacheBytes <= 0;
+    s->mAutoGpu = scenario.terrain.gpuBytes <= 0;
+    terrain::CacheBudget budget{
+        s->mAutoCpu ? CacheDefaults::kFloorCpuBytes
+                    : std::size_t(std::max<std::int64_t>(scenario.terrain.cacheBytes, 1 << 20)),
+        s->mAutoGpu ? CacheDefaults::kFloorGpuBytes
+                    : std::size_t(std::max<std::int64_t>(scenario.terrain.gpuBytes, 1 << 20))};
     s->mCache = std::make_unique<terrain::TerrainTileCache>(budget, kCacheSlots);
     s->mResidency = std::make_unique<terrain::CacheResidency>(*s->mCache, true);
     s->mGpu.resize(kCacheSlots);
@@ -430,7 +436,8 @@ void TerrainScene::update(const math::Camera& camera, double time) {
     mFrame.uploadMs = mBudget.msUsed();
 
     bool reselect = false;
-    std::vector<anim::FrameBracket> wanted(mLayers.size());
+    std::vector<anim::FrameBracket>& wanted = mWanted;  // reused: no allocation per frame
+    wanted.assign(mLayers.size(), anim::FrameBracket{});
     for (std::size_t i = 0; i < mLayers.size(); ++i) {
         StackLayer& l = mLayers[i];
         if (!l.sequence || l.specA < 0) continue;
@@ -496,6 +503,7 @@ void TerrainScene::update(const math::Camera& camera, double time) {
     mFrame.residentBytes = mCache->cpuBytes() + mCache->gpuBytes();
     mSettled = !requestsPending && mLoader->inFlight() == 0 && !mFrame.holdingSequence &&
                mSelection->counters.tilesFromAncestor == 0;
+    sizeBudgetsToView();  // before the prefetch below touches frames ahead
     planSequencePrefetch();
     for (const auto& r : mSequencePrefetch) mLoader->request(r.key, r.priority);
     mLoader->submit();

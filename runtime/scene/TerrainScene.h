@@ -21,6 +21,7 @@
 #include "runtime/render/MappingSet.h"
 #include "runtime/render/TerrainRenderer.h"
 #include "runtime/render/WarpedGridRenderer.h"
+#include "runtime/scene/CacheBudgets.h"
 #include "runtime/scene/Playback.h"
 #include "runtime/terrain/MeshCells.h"
 #include "runtime/terrain/MeshPosts.h"
@@ -157,6 +158,12 @@ public:
     bool setPositionOutput(bool on);
     const io::StoreInfo& storeInfo() const { return mReader->info(); }
     /**
+     * @brief Every budget in effect by name (bytes, milliseconds, counts) for `--stats`:
+     * cache CPU/GPU bytes (and whether sized to the view), upload limits, loader in-flight cap,
+     * the sequences' prefetch bytes (TerrainSceneBudgets.cpp).
+     */
+    std::vector<std::pair<std::string, double>> budgets() const;
+    /**
      * @brief Screen-space error thresholds for the next selections (the frame-rate governor's
      * lever); the loader's meshes do not depend on them. Ignored for the full-resolution reference.
      */
@@ -238,6 +245,8 @@ private:
     void planSequencePrefetch();
     void countPrefetchHits(StackLayer& layer, bool reported);
     void recordLoadTime(const loader::LoadResult& result);
+    // TerrainSceneBudgets.cpp: cache budgets sized to the view's working set.
+    void sizeBudgetsToView();
     void sendPrefetch();
     void addPathFramePrefetch(const terrain::SelectionResult& future);
     bool specComplete(int spec) const;
@@ -258,7 +267,10 @@ private:
     std::unique_ptr<terrain::CacheResidency> mPrefetchResidency;
     terrain::TileStatsTable mStats;
     std::unique_ptr<loader::TileLoader> mLoader;
-    loader::UploadBudget mBudget{8u << 20, 6.0};
+    loader::UploadBudget mBudget{CacheDefaults::kUploadBytesPerFrame, CacheDefaults::kUploadMsPerFrame};
+    bool mAutoCpu = false, mAutoGpu = false;       ///< scenario left the budget to the view
+    std::size_t mViewCpuHigh = 0, mViewGpuHigh = 0;  ///< largest view working set so far
+    std::uint64_t mAheadBytes = 0;  ///< sequences' planned frames over the view (last frame)
     std::vector<GpuSlot> mGpu;
     std::vector<StackLayer> mLayers;
     std::vector<SceneLut> mLuts;
@@ -282,6 +294,7 @@ private:
     Playback mPlayback;
     anim::LoadTimeEstimator mTileLoad{0.005};  ///< seconds per sequence tile on the loader
     std::vector<terrain::TileRequest> mSequencePrefetch;
+    std::vector<anim::FrameBracket> mWanted;  ///< per layer: the frame pair the clock wants
     std::vector<terrain::TileRequest> mPrefetchAll;  ///< camera prefetch still missing, as sent
     /** @brief One scenario mapping and the array layers it samples. */
     struct SceneMapping {

@@ -54,13 +54,16 @@ void TerrainScene::countPrefetchHits(StackLayer& l, bool reported) {
 
 void TerrainScene::planSequencePrefetch() {
     mSequencePrefetch.clear();
+    mAheadBytes = 0;
     if (!mSelection) return;
     std::size_t sequenceLayers = 0;
     for (const StackLayer& l : mLayers) sequenceLayers += l.sequence && l.specA >= 0 ? 1 : 0;
     if (sequenceLayers == 0) return;
-    // Half of the GPU budget is left to the terrain and imagery; the sequences share the rest.
+    // A fixed GPU budget: half is left to the terrain and imagery, the sequences share the rest.
+    // A budget sized to the view follows the plan instead (the planner's deadline rule sets the
+    // depth; sizeBudgetsToView makes room for it), so no byte cap here.
     const std::uint64_t budget =
-        std::uint64_t(mCache->budget().gpuBytes) / 2 / std::uint64_t(sequenceLayers);
+        mAutoGpu ? 0 : std::uint64_t(mCache->budget().gpuBytes) / 2 / std::uint64_t(sequenceLayers);
     for (std::size_t li = 0; li < mLayers.size(); ++li) {
         StackLayer& l = mLayers[li];
         if (!l.sequence || l.specA < 0 || l.sequence->frameTimes.empty()) continue;
@@ -93,6 +96,7 @@ void TerrainScene::planSequencePrefetch() {
         in.byteBudget = budget;
         l.planner.syncSeekSerial(mPlayback.seekSerial);
         l.planner.plan(in, l.plan);
+        mAheadBytes += bytesPerFrame * l.plan.items.size();
 
         std::uint32_t requested = 0;
         for (const anim::PrefetchItem& item : l.plan.items) {

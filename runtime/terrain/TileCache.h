@@ -169,6 +169,19 @@ public:
     }
 
     const CacheBudget& budget() const noexcept { return mBudget; }
+    /**
+     * @brief CPU and GPU bytes of the entries pinned this frame: the working set of what was
+     * used since beginFrame(). Pinned entries lead the LRU list, so this walks only them.
+     */
+    std::pair<std::size_t, std::size_t> pinnedBytes() const {
+        std::size_t cpu = 0, gpu = 0;
+        for (std::uint32_t s = mHead; s != kNil && mSlots[s].lastUsed == mFrame;
+             s = mSlots[s].next) {
+            cpu += mSlots[s].cpuBytes;
+            gpu += mSlots[s].gpuBytes;
+        }
+        return {cpu, gpu};
+    }
     std::size_t cpuBytes() const noexcept { return mCpu; }
     std::size_t gpuBytes() const noexcept { return mGpu; }
     std::size_t size() const noexcept { return mCount; }

@@ -61,6 +61,9 @@ expect 2 "--shadows applies to the hillshade, not to --normals" "$GK" import top
 if [[ -f data/generated/rainier.gpkg ]]; then
     cp data/generated/rainier.gpkg "$tmp/n.gpkg"
     expect 0 "" "$GK" import topographic --store "$tmp/n.gpkg" --normals --name relief_normals --quiet
+    if "$GK" info "$tmp/n.gpkg" 2>&1 | grep -q "^budgets: cache sized to the view's working set"; then
+        echo "ok:   info prints the default budgets"; pass=$((pass + 1))
+    else echo "FAIL: info prints no budgets"; fail=$((fail + 1)); fi
     if "$GK" info "$tmp/n.gpkg" 2>&1 | grep -q "relief_normals \[imagery\]"; then
         echo "ok:   info lists the normal map"; pass=$((pass + 1))
     else echo "FAIL: info does not list relief_normals"; fail=$((fail + 1)); fi
@@ -69,6 +72,24 @@ fi
 expect 0 "" "$GK" validate $DEMO
 # Headless play runs frames and stops cleanly.
 expect 0 "stopped cleanly" "$GK" play $DEMO --display headless --size 320x180 --frames 3
+# play --stats: the same per-frame arrays as render, one entry per frame, and the budgets;
+# --max-fps 0 is unthrottled (issue 14).
+expect 0 "stopped cleanly" "$GK" play $DEMO --display headless --size 160x90 --frames 4 --max-fps 0 --stats "$tmp/play.json"
+if /usr/bin/python3 - "$tmp/play.json" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+f = j["frames"]
+keys = ["frame_ms", "tiles_drawn", "triangles", "resident_bytes", "data_time", "prefetch_depth"]
+assert all(len(f[k]) == 4 for k in keys), {k: len(f.get(k, [])) for k in keys}
+assert all(ms > 0 for ms in f["frame_ms"]) and max(f["tiles_drawn"]) > 0
+assert j["summary"]["frames"] == 4 and j["summary"]["frames_dropped"] == 0
+b = j["budgets"]
+assert b["cache_gpu_sized_to_view"] == 1 and b["cache_gpu_bytes"] >= 32 << 20
+assert b["upload_bytes_per_frame"] > 0 and b["view_working_set_gpu_bytes"] > 0
+PY
+then echo "ok:   play --stats writes per-frame arrays, summary and budgets"; pass=$((pass + 1))
+else echo "FAIL: play --stats JSON"; fail=$((fail + 1)); fi
+expect 2 "--max-fps wants a number >= 0" "$GK" play $DEMO --display headless --max-fps -1
 # render writes a recognisable terrain: mostly not sky, deterministic across runs.
 expect 0 "wrote 1 frame" "$GK" render $DEMO --out "$tmp/a.png" --time +3h --size 320x180 --stats "$tmp/s.json"
 expect 0 "wrote 1 frame" "$GK" render $DEMO --out "$tmp/b.png" --time +3h --size 320x180

@@ -26,7 +26,8 @@ TEST(ScenarioReader, MinimalScenarioAndDefaults) {
     EXPECT_EQ(s.terrain.store, "valley");
     EXPECT_EQ(s.terrain.elevation, "elevation");
     EXPECT_EQ(s.terrain.tauGeom, 2.0);
-    EXPECT_EQ(s.terrain.cacheBytes, 512ll << 20);
+    EXPECT_EQ(s.terrain.cacheBytes, 0);  // unset: sized to the view's working set
+    EXPECT_EQ(s.terrain.gpuBytes, 0);
     ASSERT_EQ(s.layers.size(), 1u);
     EXPECT_EQ(s.layers[0].kind, LayerKind::Thematic);
     EXPECT_EQ(s.layers[0].operation.type, OperationType::Opacity);

@@ -1,0 +1,138 @@
+#!/usr/bin/python3
+"""Peak memory, frame rate and startup of the geokiosk process (issue 14).
+
+Prints ONE JSON object per workload, each with the same workload measured in the same run on a
+baseline binary (an older build, e.g. main's first commit) when --baseline is given:
+
+  version      geokiosk --version
+  validate     geokiosk validate of the demo
+  flight_720p  play the demo headless at 1280x720 (camera tour, flood replay), --frames N
+  flight_1080p the same at 1920x1080
+  replay       render the demo's whole flood sequence at 1280x720 (frames to a folder)
+  startup_1080p  process start to the first complete frame of the demo at 1920x1080 written
+               (render --time +3h waits until every tile of the view is resident); warm: the
+               median of 3 runs after one unmeasured run
+
+Peak RSS is the kernel's ru_maxrss of the process; peak PSS is the largest Pss of
+/proc/PID/smaps_rollup sampled every 20 ms (shared libraries counted by share). Frame rate is
+frames / wall seconds of the whole play run, start-up included (the baseline binary has no
+`play --stats`, so both are timed from outside the same way).
+
+usage: memory_bench.py BUILD/geokiosk [--baseline OLD/geokiosk] [--frames N]
+"""
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+DEMO = os.path.join(ROOT, "scenarios/demo/rainier.json")
+ENV = dict(os.environ,
+           __EGL_VENDOR_LIBRARY_FILENAMES="/usr/share/glvnd/egl_vendor.d/50_mesa.json",
+           GALLIUM_DRIVER="llvmpipe")
+
+
+def pss_kb(pid):
+    try:
+        with open(f"/proc/{pid}/smaps_rollup") as f:
+            for line in f:
+                if line.startswith("Pss:"):
+                    return int(line.split()[1])
+    except OSError:
+        pass
+    return 0
+
+
+def measure(cmd):
+    """Run cmd; return peak RSS/PSS (MB), wall seconds, exit status."""
+    start = time.monotonic()
+    p = subprocess.Popen(cmd, env=ENV, cwd=ROOT, stdout=subprocess.DEVNULL,
+                         stderr=subprocess.PIPE)
+    peak_pss = 0
+    while True:
+        pid, status, usage = os.wait4(p.pid, os.WNOHANG)
+        if pid:
+            break
+        peak_pss = max(peak_pss, pss_kb(p.pid))
+        time.sleep(0.02)
+    wall = time.monotonic() - start
+    err = p.stderr.read().decode(errors="replace")
+    p.stderr.close()
+    return {"peak_rss_mb": round(usage.ru_maxrss / 1024.0, 1),
+            "peak_pss_mb": round(peak_pss / 1024.0, 1),
+            "wall_s": round(wall, 3),
+            "exit": os.waitstatus_to_exitcode(status),
+            "stderr_tail": err.strip().splitlines()[-1:] if err.strip() else []}
+
+
+def workloads(binary, frames, tmp):
+    play = [binary, "play", DEMO, "--display", "headless", "--frames", str(frames)]
+    return {
+        "version": [binary, "--version"],
+        "validate": [binary, "validate", DEMO],
+        "flight_720p": play + ["--size", "1280x720"],
+        "flight_1080p": play + ["--size", "1920x1080"],
+        "replay": [binary, "render", DEMO, "--out", os.path.join(tmp, "replay") + "/",
+                   "--from", "+0", "--to", "+9h", "--fps", "1", "--size", "1280x720"],
+        "startup_1080p": [binary, "render", DEMO, "--out", os.path.join(tmp, "first.png"),
+                          "--time", "+3h", "--size", "1920x1080"],
+    }
+
+
+def run(binary, name, cmd, frames):
+    if name == "startup_1080p":
+        measure(cmd)  # warm the page cache and Mesa's shader cache
+        runs = [measure(cmd) for _ in range(3)]
+        r = dict(runs[1])
+        r["first_frame_s"] = round(statistics.median(x["wall_s"] for x in runs), 3)
+        return r
+    r = measure(cmd)
+    if name.startswith("flight"):
+        r["frames"] = frames
+        r["fps"] = round(frames / r["wall_s"], 2) if r["wall_s"] > 0 else 0.0
+    return r
+
+
+GOALS = {"version": {"peak_rss_mb": 15}, "flight_1080p": {"peak_rss_mb": 150},
+         "startup_1080p": {"first_frame_s": 0.5}}
+
+
+def main():
+    args = sys.argv[1:]
+    if not args:
+        print(__doc__, file=sys.stderr)
+        return 2
+    binary = os.path.abspath(args[0])
+    baseline = None
+    frames = 120
+    if "--baseline" in args:
+        baseline = os.path.abspath(args[args.index("--baseline") + 1])
+    if "--frames" in args:
+        frames = int(args[args.index("--frames") + 1])
+    only = None
+    if "--only" in args:
+        only = args[args.index("--only") + 1].split(",")
+    with tempfile.TemporaryDirectory() as tmp:
+        new = workloads(binary, frames, tmp)
+        old = workloads(baseline, frames, tmp) if baseline else {}
+        for name, cmd in new.items():
+            if only and name not in only:
+                continue
+            # Alternate after/baseline per workload so machine load hits both alike.
+            out = {"benchmark": "memory", "workload": name, "binary": binary}
+            out.update(run(binary, name, cmd, frames))
+            if baseline:
+                out["baseline"] = dict(binary=baseline, **run(baseline, name, old[name], frames))
+            else:
+                out["baseline"] = "none (pass --baseline OLD/geokiosk)"
+            if name in GOALS:
+                out["goal"] = GOALS[name]
+            print(json.dumps(out), flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,40 @@
+// TerrainScene: cache budgets sized to the working set of the view (docs/performance.md).
+#include "runtime/scene/TerrainScene.h"
+
+namespace kiosk::scene {
+
+void TerrainScene::sizeBudgetsToView() {
+    if (!mAutoCpu && !mAutoGpu) return;
+    // Pinned now: the tiles the selection uses (its ancestors included) and this frame's
+    // arrivals; the sequences' frames ahead are added from the last plan (mAheadBytes).
+    const auto [cpu, gpu] = mCache->pinnedBytes();
+    mViewCpuHigh = std::max(mViewCpuHigh, cpu);
+    mViewGpuHigh = std::max(mViewGpuHigh, gpu);
+    terrain::CacheBudget b = mCache->budget();
+    // Arrivals are inserted with their full decoded payload before the upload frees it: leave
+    // one frame of uploads on top of the CPU working set.
+    if (mAutoCpu)
+        b.cpuBytes = workingSetBudget(mViewCpuHigh, CacheDefaults::kUploadBytesPerFrame,
+                                      CacheDefaults::kFloorCpuBytes);
+    if (mAutoGpu)
+        b.gpuBytes = workingSetBudget(mViewGpuHigh, mAheadBytes, CacheDefaults::kFloorGpuBytes);
+    if (b.cpuBytes != mCache->budget().cpuBytes || b.gpuBytes != mCache->budget().gpuBytes)
+        mCache->setBudget(b);
+}
+
+std::vector<std::pair<std::string, double>> TerrainScene::budgets() const {
+    const terrain::CacheBudget& b = mCache->budget();
+    return {{"cache_cpu_bytes", double(b.cpuBytes)},
+            {"cache_gpu_bytes", double(b.gpuBytes)},
+            {"cache_cpu_sized_to_view", mAutoCpu ? 1.0 : 0.0},
+            {"cache_gpu_sized_to_view", mAutoGpu ? 1.0 : 0.0},
+            {"view_working_set_cpu_bytes", double(mViewCpuHigh)},
+            {"view_working_set_gpu_bytes", double(mViewGpuHigh)},
+            {"sequence_prefetch_bytes", double(mAheadBytes)},
+            {"upload_bytes_per_frame", double(mBudget.bytesPerFrame())},
+            {"upload_ms_per_frame", mBudget.msPerFrame()},
+            {"loader_max_in_flight", double(loader::LoaderOptions{}.maxInFlight)},
+            {"cache_slots", double(mCache->capacity())}};
+}
+
+}  // namespace kiosk::scene
