@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/packing.hpp>
 #include <vector>
 
 namespace kiosk::render {
@@ -58,34 +59,39 @@ gl::Texture makeScalarTexture(int width, int height, const float* values,
 }
 
 gl::Texture makeNormalMapTexture(int width, int height, const std::uint8_t* rgba) {
-    // Half floats hold every k/255 to 2^-11 relative, well inside the 8-bit step.
-    std::vector<float> f(std::size_t(width) * std::size_t(height) * 4);
-    for (std::size_t i = 0; i < f.size(); ++i) f[i] = float(rgba[i]) * (1.0f / 255.0f);
+    // Level 0 and the mip chain (2x2 box, as glGenerateMipmap, which core ES 3.0 cannot do for
+    // RGBA16F: filterable but not colour-renderable) are built in float and uploaded as half
+    // floats, which hold every k/255 to 2^-11 relative, well inside the 8-bit step. The scratch
+    // buffers are reused (render thread only): a tile upload then allocates nothing on the heap.
+    thread_local std::vector<float> level, next;
+    thread_local std::vector<std::uint16_t> half;
+    level.resize(std::size_t(width) * std::size_t(height) * 4);
+    for (std::size_t i = 0; i < level.size(); ++i) level[i] = float(rgba[i]) * (1.0f / 255.0f);
+    int levels = 1;
+    for (int m = std::max(width, height); m > 1; m /= 2) ++levels;
     auto tex = gl::Texture::create();
     glBindTexture(GL_TEXTURE_2D, tex.id());
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    // Mipmaps built here (2x2 box, as glGenerateMipmap): core ES 3.0 cannot generate them for
-    // RGBA16F, which is filterable but not colour-renderable there.
-    std::vector<float> next;
-    for (int level = 0, w = width, h = height;; ++level) {
-        glTexImage2D(GL_TEXTURE_2D, level, GL_RGBA16F, w, h, 0, GL_RGBA, GL_FLOAT, f.data());
-        if (w == 1 && h == 1) break;
+    // Immutable storage: the whole chain allocated once (per-level glTexImage2D made Mesa build
+    // each level apart and copy them together on first use).
+    glTexStorage2D(GL_TEXTURE_2D, levels, GL_RGBA16F, width, height);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+    for (int l = 0, w = width, h = height; l < levels; ++l) {
+        half.resize(std::size_t(w) * std::size_t(h) * 4);
+        for (std::size_t i = 0; i < half.size(); ++i) half[i] = glm::packHalf1x16(level[i]);
+        glTexSubImage2D(GL_TEXTURE_2D, l, 0, 0, w, h, GL_RGBA, GL_HALF_FLOAT, half.data());
+        if (l + 1 == levels) break;
         const int nw = std::max(1, w / 2), nh = std::max(1, h / 2);
         next.assign(std::size_t(nw) * std::size_t(nh) * 4, 0.0f);
         for (int y = 0; y < nh; ++y)
             for (int x = 0; x < nw; ++x)
-                for (int c = 0; c < 4; ++c) {
-                    float sum = 0.0f;
-                    for (int k = 0; k < 4; ++k) {
-                        const int sx = std::min(w - 1, 2 * x + (k & 1)),
-                                  sy = std::min(h - 1, 2 * y + (k >> 1));
-                        sum += f[(std::size_t(sy) * std::size_t(w) + std::size_t(sx)) * 4 +
-                                 std::size_t(c)];
-                    }
-                    next[(std::size_t(y) * std::size_t(nw) + std::size_t(x)) * 4 + std::size_t(c)] =
-                        0.25f * sum;
+                for (int k = 0; k < 4; ++k) {
+                    const std::size_t sx = std::size_t(std::min(w - 1, 2 * x + (k & 1)));
+                    const std::size_t sy = std::size_t(std::min(h - 1, 2 * y + (k >> 1)));
+                    const float* src = &level[(sy * std::size_t(w) + sx) * 4];
+                    float* dst = &next[(std::size_t(y) * std::size_t(nw) + std::size_t(x)) * 4];
+                    for (int c = 0; c < 4; ++c) dst[c] += 0.25f * src[c];
                 }
-        f.swap(next);
+        level.swap(next);
         w = nw, h = nh;
     }
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
