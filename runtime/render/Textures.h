@@ -26,14 +26,6 @@ gl::Texture makeLutTexture(int size, const std::uint8_t* rgba);
 gl::Texture makeScalarTexture(int width, int height, const float* values,
                               std::optional<float> nodataAs);
 
-/**
- * @brief An encoded normal map (RGBA8 as stored: rgb = normal * 0.5 + 0.5, a = validity, nodata
- * all zero) as a mipmapped RGBA16F texture. Converted once when the tile becomes resident so the
- * hardware filter interpolates in float: one filtered fetch per pixel gives what four 8-bit
- * texel fetches blended in the shader gave (8-bit filtering rounds the filtered normal to 8 bits,
- * up to 1.5 DN of Lambert), which on llvmpipe was the largest share of the demo's shading.
- */
-gl::Texture makeNormalMapTexture(int width, int height, const std::uint8_t* rgba);
 /** @brief Single-channel 8-bit texture (hillshade, luminance, visibility masks). */
 gl::Texture makeR8Texture(int width, int height, const std::uint8_t* values);
 

@@ -361,18 +361,10 @@ void TerrainScene::uploadPayload(terrain::TileHandle handle, terrain::TilePayloa
             payload.mesh->indices = {};
         }
     } else if (payload.image) {
-        // A normals layer's map is converted to half floats once here (one filtered fetch per
-        // pixel instead of four texel fetches, render/Textures.h): twice the bytes.
-        bool normals = false;
-        for (const auto& l : mLayers)
-            normals |= l.keyLayer == int(payload.key.layer) &&
-                       l.config->kind == config::LayerKind::Normals;
-        bytes = std::max<std::size_t>(payload.image->rgba.size() * (normals ? 2 : 1) * 4 / 3, 1);
+        bytes = std::max<std::size_t>(payload.image->rgba.size() * 4 / 3, 1);  // with mipmaps
         if (!mCache->reserveGpu(handle, bytes)) return;
-        const auto& img = *payload.image;
-        slot.texture = normals
-                           ? render::makeNormalMapTexture(img.width, img.height, img.rgba.data())
-                           : render::makeRgbaTexture(img.width, img.height, img.rgba.data(), true);
+        slot.texture = render::makeRgbaTexture(payload.image->width, payload.image->height,
+                                               payload.image->rgba.data(), true);
         payload.image->rgba = {};
     } else if (payload.raster) {
         const auto& r = *payload.raster;

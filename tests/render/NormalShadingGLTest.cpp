@@ -89,7 +89,7 @@ protected:
                 std::uint8_t* p = &rgba[(std::size_t(y) * std::size_t(n) + std::size_t(x)) * 4];
                 p[0] = t[0], p[1] = t[1], p[2] = t[2], p[3] = 255;
             }
-        return makeNormalMapTexture(n, n, rgba.data());
+        return makeRgbaTexture(n, n, rgba.data(), true);
     }
 
     GpuMesh mMesh;
@@ -125,7 +125,7 @@ TEST_F(NormalShadingGLTest, LambertOfNormalMapEqualsLambertOfAnalyticNormal) {
         for (int k = 0; k < 3; ++k) rgba[i * 4 + std::size_t(k)] = rgb[i * 3 + std::size_t(k)];
         rgba[i * 4 + 3] = 255;
     }
-    auto tex = makeNormalMapTexture(kTex, kTex, rgba.data());
+    auto tex = makeRgbaTexture(kTex, kTex, rgba.data(), true);
     // 7.4 m pixels on 7.8 m texels: magnified, so mip level 0 (as a tile at its own level).
     const auto cam = camera(1150.0, kPx);
     struct Light {
