@@ -187,7 +187,10 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         auto opened = FrameOutput::video(vo);
         if (!opened) {
             printDiagnostics(opened.diagnostics);
-            return opened.diagnostics.has("EXPORT_CODEC") ? kExitCannotRun : kExitBadInput;
+            // No encoder in this FFmpeg build, or no FFmpeg module installed: cannot run here.
+            const bool cannot =
+                opened.diagnostics.has("EXPORT_CODEC") || opened.diagnostics.has("EXPORT_MODULE");
+            return cannot ? kExitCannotRun : kExitBadInput;
         }
         output.emplace(std::move(*opened.value));
     } else {

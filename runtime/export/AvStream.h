@@ -1,6 +1,7 @@
 #pragma once
 
 #include "runtime/core/Diagnostics.h"
+#include "runtime/export/StreamModule.h"
 #include "runtime/export/VideoEncoder.h"
 
 #include <cstdint>
@@ -19,22 +20,19 @@ namespace kiosk::video {
  * @brief One video stream in one file through libavformat/libavcodec: the single place that
  * knows codec names, pixel formats, colour tags and the RGB -> YUV matrix. Not thread-safe; the
  * encoder thread owns it. Writes to `path.part` and renames on close(), so a half-written
- * video never carries the final name.
+ * video never carries the final name. Built only into the module geokiosk-av.so (StreamModule.h).
  */
-class AvStream {
+class AvStream final : public EncoderStream {
 public:
     AvStream() = default;
-    ~AvStream();
+    ~AvStream() override;
     AvStream(const AvStream&) = delete;
     AvStream& operator=(const AvStream&) = delete;
 
-    bool open(const VideoOptions& options, Diagnostics& diags);
-    /** @brief Convert one RGBA8 frame (top row first) and encode it. */
-    bool encode(const std::uint8_t* rgba, Diagnostics& diags);
-    /** @brief Flush the codec, write the trailer, move the file into place. */
-    bool close(Diagnostics& diags);
-    /** @brief After a failure: release everything and delete the partial file. */
-    void abandon();
+    bool open(const VideoOptions& options, Diagnostics& diags) override;
+    bool encode(const std::uint8_t* rgba, Diagnostics& diags) override;
+    bool close(Diagnostics& diags) override;
+    void abandon() override;
 
 private:
     bool drain(bool flushing, Diagnostics& diags);

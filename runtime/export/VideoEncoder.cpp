@@ -1,6 +1,6 @@
 #include "runtime/export/VideoEncoder.h"
 
-#include "runtime/export/AvStream.h"
+#include "runtime/export/StreamModule.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,42 +12,12 @@
 
 namespace kiosk::video {
 
-std::optional<VideoFormat> videoFormatForPath(const std::filesystem::path& path) {
-    const std::string ext = path.extension().string();
-    if (ext == ".mp4") return VideoFormat::H264Mp4;
-    if (ext == ".mkv") return VideoFormat::Ffv1Mkv;
-    if (ext == ".webm") return VideoFormat::Vp9Webm;
-    return std::nullopt;
-}
-
-const char* videoFormatName(VideoFormat f) noexcept {
-    switch (f) {
-        case VideoFormat::H264Mp4:
-            return "H.264 MP4";
-        case VideoFormat::Ffv1Mkv:
-            return "FFV1 Matroska (lossless RGB)";
-        case VideoFormat::Vp9Webm:
-            return "VP9 WebM";
-    }
-    return "?";
-}
-
-int defaultCrf(VideoFormat f) noexcept {
-    // H.264 18 keeps the overlays' text and the legend's thin ticks clean (PSNR ~45 dB on the
-    // demo); VP9's scale differs, 31 is libvpx's recommended 1080p quality.
-    return f == VideoFormat::Vp9Webm ? 31 : 15;
-}
-
-int maxCrf(VideoFormat f) noexcept {
-    return f == VideoFormat::Vp9Webm ? 63 : 51;
-}
-
 /**
  * The encoder thread's side: a fixed pool of frame buffers moves between `free` and `ready`;
  * the render thread fills a free one, the encoder thread converts, encodes and returns it.
  */
 struct VideoEncoder::Impl {
-    AvStream stream;
+    std::unique_ptr<EncoderStream> stream;  ///< geokiosk-av.so's AvStream (StreamModule.cpp)
     std::size_t frameBytes = 0;
     std::vector<std::vector<std::uint8_t>> pool;
     std::deque<std::size_t> freeSlots, ready;
@@ -71,7 +41,7 @@ struct VideoEncoder::Impl {
                 ready.pop_front();
             }
             Diagnostics d;
-            const bool ok = failed || stream.encode(pool[slot].data(), d);
+            const bool ok = failed || stream->encode(pool[slot].data(), d);
             std::lock_guard lock(mutex);
             if (!ok && !failed) {
                 failed = true;
@@ -82,7 +52,7 @@ struct VideoEncoder::Impl {
             changed.notify_all();
         }
         Diagnostics d;
-        if (!failed && !stream.close(d)) {
+        if (!failed && !stream->close(d)) {
             std::lock_guard lock(mutex);
             failed = true;
             error = d;
@@ -95,8 +65,10 @@ VideoEncoder::VideoEncoder(std::unique_ptr<Impl> impl) : mImpl(std::move(impl)) 
 Result<std::unique_ptr<VideoEncoder>> VideoEncoder::open(const VideoOptions& options) {
     auto impl = std::make_unique<Impl>();
     Diagnostics d;
-    if (!impl->stream.open(options, d)) {
-        impl->stream.abandon();
+    impl->stream = makeEncoderStream(d);
+    if (!impl->stream) return d;
+    if (!impl->stream->open(options, d)) {
+        impl->stream->abandon();
         return d;
     }
     impl->frameBytes = std::size_t(options.width) * std::size_t(options.height) * 4;
@@ -150,7 +122,7 @@ bool VideoEncoder::finish(Diagnostics& diags) {
     m.finished = true;
     if (m.failed) {
         diags.append(m.error);
-        m.stream.abandon();
+        m.stream->abandon();
         return false;
     }
     return true;

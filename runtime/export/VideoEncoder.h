@@ -57,7 +57,8 @@ int maxCrf(VideoFormat f) noexcept;
  * is free (bounded memory: queueFrames frames), so rendering the next frame overlaps encoding
  * this one. finish() drains the queue, flushes the codec and writes the trailer (and the
  * chapters). Errors (disk full, codec failure) surface at the next push() or at finish().
- * Codes: EXPORT_CODEC (encoder missing from this FFmpeg build), EXPORT_OPEN, EXPORT_ENCODE,
+ * Codes: EXPORT_MODULE (the FFmpeg module geokiosk-av.so cannot be loaded; StreamModule.h),
+ * EXPORT_CODEC (encoder missing from this FFmpeg build), EXPORT_OPEN, EXPORT_ENCODE,
  * EXPORT_WRITE.
  */
 class VideoEncoder {

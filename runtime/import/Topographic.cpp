@@ -170,8 +170,11 @@ Diagnostics importTopographic(const TopographicOptions& o) {
         auto r = buildImageryPyramid(w, grid, window, rows, opt);
         progress.finish();
         if (!r) return r.diagnostics;
-        d.append(w.finishLayer(o.name, 0, 255, grid.minX, grid.minY,
-                               grid.minX + W * fine.pixelXSize, grid.maxY));
+        // Shade exists where the elevation does: its extent, not the whole tile matrix.
+        const auto e = w.layerDataExtent(o.elevation);
+        d.append(e ? w.finishLayer(o.name, 0, 255, (*e)[0], (*e)[1], (*e)[2], (*e)[3])
+                   : w.finishLayer(o.name, 0, 255, grid.minX, grid.minY,
+                                   grid.minX + W * fine.pixelXSize, grid.maxY));
         return d;
     });
 }

@@ -71,6 +71,21 @@ CREATE TABLE IF NOT EXISTS kiosk_sequences (name TEXT NOT NULL PRIMARY KEY, unit
 CREATE TABLE IF NOT EXISTS kiosk_sequence_frames (sequence_name TEXT NOT NULL, frame_index
   INTEGER NOT NULL, time_utc TEXT NOT NULL, time_epoch DOUBLE NOT NULL, table_name TEXT NOT NULL
   UNIQUE, min_value DOUBLE, max_value DOUBLE, PRIMARY KEY (sequence_name, frame_index));
+CREATE TABLE IF NOT EXISTS gpkg_geometry_columns (table_name TEXT NOT NULL, column_name TEXT NOT
+  NULL, geometry_type_name TEXT NOT NULL, srs_id INTEGER NOT NULL, z TINYINT NOT NULL, m TINYINT
+  NOT NULL, CONSTRAINT pk_geom_cols PRIMARY KEY (table_name, column_name), CONSTRAINT
+  uk_gc_table_name UNIQUE (table_name), CONSTRAINT fk_gc_tn FOREIGN KEY (table_name) REFERENCES
+  gpkg_contents(table_name), CONSTRAINT fk_gc_srs FOREIGN KEY (srs_id) REFERENCES
+  gpkg_spatial_ref_sys (srs_id));
+CREATE VIEW IF NOT EXISTS kiosk_sequence_times AS SELECT f.rowid AS fid, f.sequence_name AS
+  sequence_name, f.frame_index AS frame_index, f.time_utc AS time_utc, f.time_epoch AS
+  time_epoch, f.table_name AS table_name, f.min_value AS min_value, f.max_value AS max_value,
+  s.units AS units FROM kiosk_sequence_frames f JOIN kiosk_sequences s ON s.name =
+  f.sequence_name;
+INSERT OR IGNORE INTO gpkg_contents (table_name, data_type, identifier, description, last_change)
+  VALUES ('kiosk_sequence_times', 'attributes', 'kiosk_sequence_times', 'time steps of every '
+  || 'sequence: one row per frame with its time and coverage table',
+  strftime('%Y-%m-%dT%H:%M:%fZ', 'now'));
 )SQL";
 
 constexpr const char* kCoverageDefinition =
@@ -307,6 +322,18 @@ Diagnostics StoreWriter::insertMatrices(const std::string& table, const std::str
 Diagnostics StoreWriter::createScalarLayer(const ScalarLayerSpec& spec) {
     Diagnostics d = insertMatrices(spec.table, "2d-gridded-coverage", spec.description);
     if (d.hasErrors()) return d;
+    // GDAL (3.6) takes a coverage's Min/Max from the tile ancillary rows whose tpudt_id is one of
+    // the table's tile ids, whatever their tpudt_name: tile ids start past every id already
+    // used by a coverage of this store, so no two coverages share one.
+    auto seq = mDb.prepare(
+        "INSERT INTO sqlite_sequence (name, seq) SELECT ?, COALESCE(MAX(tpudt_id), 0) FROM "
+        "gpkg_2d_gridded_tile_ancillary");
+    if (!seq) return seq.diagnostics;
+    seq->bind(1, std::string_view(spec.table));
+    if (seq->step() != SQLITE_DONE) {
+        d.add(mDb.error("STORE_SQL", "sqlite_sequence", spec.table));
+        return d;
+    }
     auto a = mDb.prepare(
         "INSERT INTO gpkg_2d_gridded_coverage_ancillary (tile_matrix_set_name, "
         "datatype, scale, offset, precision, data_null, uom, field_name, "
@@ -503,6 +530,17 @@ std::vector<double> StoreWriter::sequenceTimes(const std::string& sequence) {
     st->bind(1, std::string_view(sequence));
     while (st->step() == SQLITE_ROW) out.push_back(st->columnDouble(0));
     return out;
+}
+
+std::optional<std::array<double, 4>> StoreWriter::layerDataExtent(const std::string& table) {
+    auto st = mDb.prepare(
+        "SELECT data_min_x, data_min_y, data_max_x, data_max_y FROM kiosk_layers WHERE "
+        "table_name = ? AND data_min_x IS NOT NULL");
+    if (!st) return std::nullopt;
+    st->bind(1, std::string_view(table));
+    if (st->step() != SQLITE_ROW) return std::nullopt;
+    return std::array<double, 4>{st->columnDouble(0), st->columnDouble(1), st->columnDouble(2),
+                                 st->columnDouble(3)};
 }
 
 std::optional<std::string> StoreWriter::sequenceUnits(const std::string& sequence) {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <array>
 #include <optional>
 #include <string>
 
@@ -72,6 +73,8 @@ public:
                                  const std::string& table, double minValue, double maxValue);
     /** @brief Frame times already stored for a sequence (to append in order). */
     std::vector<double> sequenceTimes(const std::string& sequence);
+    /** @brief Data extent (min x, min y, max x, max y) recorded for a finished layer. */
+    std::optional<std::array<double, 4>> layerDataExtent(const std::string& table);
     /** @brief Units of a sequence already in the store; nullopt when there is no such sequence. */
     std::optional<std::string> sequenceUnits(const std::string& sequence);
 

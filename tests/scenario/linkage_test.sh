@@ -20,6 +20,12 @@ else ok "runtime NEEDED has no GDAL/netCDF/OpenImageIO"; fi
 # Transitively too (a static library could drag one in through another shared library).
 if ldd "$GK" | grep -Eq "$FORBIDDEN"; then bad "runtime loads: $(ldd "$GK" | grep -E "$FORBIDDEN")"
 else ok "nothing the runtime loads is GDAL/netCDF/OpenImageIO"; fi
+# FFmpeg (video export) is a module loaded only when a video is written: over a hundred libraries
+# (x264, x265, libvpx, librsvg, ...) a playing kiosk never maps.
+if ldd "$GK" | grep -Eq 'libavcodec|libavformat|libswscale'; then bad "runtime loads FFmpeg: $(ldd "$GK" | grep -E 'libav|libsw')"
+else ok "nothing the runtime loads at start is FFmpeg"; fi
+if readelf -d "$(dirname "$GK")/geokiosk-av.so" | grep -q libavcodec; then ok "geokiosk-av.so links libavcodec"
+else bad "geokiosk-av.so does not link libavcodec"; fi
 # The importer is the one that has them.
 if readelf -d "$(dirname "$GK")/geokiosk-import" | grep -q libgdal; then ok "geokiosk-import links GDAL"
 else bad "geokiosk-import does not link GDAL"; fi
