@@ -35,4 +35,5 @@ fi
 /usr/bin/python3 "$ROOT/bench/kiosk/kiosk_bench.py" soak "$BUILD/geokiosk" "$ROOT" --frames ${KIOSK_SOAK_FRAMES:-1000000}
 /usr/bin/python3 "$ROOT/bench/kiosk/kiosk_bench.py" restart "$BUILD/geokiosk" "$ROOT"
 /usr/bin/python3 "$ROOT/bench/kiosk/kiosk_bench.py" scrape "$BUILD/geokiosk" "$ROOT"
+"$BUILD/bench/bench-wall" scenarios/demo/rainier.json   # swap barrier, 4/16 follower processes vs one node's frame
 "$BUILD/bench/bench-export" scenarios/demo/rainier.json --frames ${KIOSK_BENCH_FRAMES:-60}  # 1080p export vs PNG vs rendering alone

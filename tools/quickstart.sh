@@ -15,7 +15,7 @@ BUILD_PKGS=(build-essential cmake ninja-build pkg-config git
     libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libgbm-dev libdrm-dev libx11-dev
     libglm-dev libopenimageio-dev libsqlite3-dev nlohmann-json3-dev libgtest-dev
     libgdal-dev gdal-bin libnetcdf-dev libfreetype-dev fonts-dejavu-core
-    libsystemd-dev libcpp-httplib-dev libwayland-dev wayland-protocols
+    libsystemd-dev libcpp-httplib-dev libwayland-dev wayland-protocols libzmq3-dev cppzmq-dev
     libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
     libspng-dev libturbojpeg0-dev)
 TEST_PKGS=(xvfb xauth glslang-tools clang-14 libclang-rt-14-dev python3-prometheus-client weston lintian ffmpeg

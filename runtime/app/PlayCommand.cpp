@@ -9,6 +9,7 @@
 #include "runtime/app/Report.h"
 #include "runtime/app/Session.h"
 #include "runtime/app/Signals.h"
+#include "runtime/app/WallNode.h"
 #include "runtime/core/Clock.h"
 #include "runtime/core/ExitCode.h"
 #include "runtime/core/Log.h"
@@ -68,7 +69,8 @@ constexpr const char* kUsage =
     "usage: geokiosk play SCENARIO [--display "
     "auto|kms|x11|wayland|headless] [--size WxH] [--windowed] [--max-fps N] "
     "[--frames N] [--connector NAME] [--drm-device PATH] [--listen HOST:PORT] "
-    "[--token-file FILE] [--target-fps N] [--stats STATS.json]\n";
+    "[--token-file FILE] [--target-fps N] [--stats STATS.json] "
+    "[--wall WALL.json --screen ID [--wall-log LOG.jsonl]]\n";
 
 int usage(const std::string& message) {
     std::fprintf(stderr, "geokiosk play: %s\n%s", message.c_str(), kUsage);
@@ -117,6 +119,8 @@ int runPlayCommand(const std::vector<std::string>& argv) {
     std::vector<std::string> valueOptions = {"display",   "size",       "max-fps",    "frames",
                                              "connector", "drm-device", "target-fps", "stats"};
     for (const auto& o : KioskHooks::optionNames()) valueOptions.push_back(o);
+    for (const char* o : {"wall", "screen", "wall-log"})
+        valueOptions.push_back(o);  // display walls
     Args args("play", valueOptions, {"windowed"});
     if (!args.parse(argv)) return usage(args.error());
     if (args.help()) return showHelp(kUsage);
@@ -138,6 +142,16 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         if (!wh) return usage("--size wants WIDTHxHEIGHT, got '" + *size + "'");
         dopts.width = wh->first;
         dopts.height = wh->second;
+    }
+    int wallExit = -1;
+    std::optional<WallScreen> wallScreen = wallScreenFromArgs(args, wallExit);
+    if (wallExit >= 0) return wallExit;
+    if (!wallScreen && args.value("wall-log")) return usage("--wall-log needs --wall");
+    if (wallScreen) {
+        if (args.value("size"))
+            return usage("with --wall the screen's size comes from the wall file; drop --size");
+        dopts.width = wallScreen->width();
+        dopts.height = wallScreen->height();
     }
     dopts.windowed = args.flag("windowed");
     dopts.shouldStop = stopRequested;
@@ -207,6 +221,15 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         offscreen.emplace(std::move(*rt.value));
     }
 
+    std::unique_ptr<WallNode> wallNode;
+    if (wallScreen) {
+        auto node = WallNode::create(std::move(*wallScreen), args.value("wall-log").value_or(""));
+        if (!node) {
+            printDiagnostics(node.diagnostics);
+            return kExitCannotRun;
+        }
+        wallNode = std::move(*node.value);
+    }
     RealClock wall;
     anim::ScenarioClock clock = makeClock(*session);
     std::optional<anim::BriefingPlayer> briefing = makeBriefing(*session);
@@ -296,9 +319,13 @@ int runPlayCommand(const std::vector<std::string>& argv) {
                 input.step > 0 ? clock.stepToNextKey(keys) : clock.stepToPreviousKey(keys);
             }
         }
-        const bool ready = !session->terrain().frameInfo().holdingSequence;
-        const double t = briefing ? briefing->advance(dt, ready) : clock.advance(dt, ready).time;
-        if (briefing && briefing->chapter() != session->chapterIndex())
+        // On a wall the clock waits for the step to be resident on every node, not just here.
+        const bool ready =
+            wallNode ? wallNode->stepResident() : !session->terrain().frameInfo().holdingSequence;
+        double t = briefing ? briefing->advance(dt, ready) : clock.advance(dt, ready).time;
+        // A wall's followers show the leader's chapter (below), not their own briefing's.
+        if (briefing && briefing->chapter() != session->chapterIndex() &&
+            (!wallNode || wallNode->isLeader()))
             session->setChapter(briefing->chapter());
         auto vp = session->viewpointAt(t, "");
         // Interactive control (when the scenario allows it): the first navigation key takes the
@@ -314,44 +341,80 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             }
         }
         input.clearRequests();
-        const int w = dpy.width(), h = dpy.height();
-        const math::Camera cam =
-            vp ? makeCamera(*vp, session->terrain().bounds(), w, h, session->scenario().camera.fovY)
-               : makeCamera(session->terrain().overviewViewpoint(), session->terrain().bounds(), w,
-                            h, 45.0);
-        if (offscreen)
-            offscreen->bind();
-        else
-            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        // What the clock plays (a briefing: its chapter's span): sizes the sequences' prefetch.
+        scene::Playback playback = scene::playbackOf(clock);
         if (briefing) {
             const anim::ChapterSpan& span =
                 session->chapterSpans()[std::size_t(briefing->chapter())];
-            scene::Playback playback;
+            playback = {};
             playback.rate = briefing->atPause() || briefing->userPaused()
                                 ? 0.0
                                 : (span.to - span.from) / span.seconds;
             playback.start = span.from;
             playback.end = span.to;
-            session->setPlayback(playback);
-        } else {
-            session->setPlayback(scene::playbackOf(clock));
         }
-        if (governor.state().active) {
+        if (wallNode) {  // followers draw the leader's frame; nothing new: not a frame
+            if (!wallNode->beginFrame(*session, t,
+                                      vp ? *vp : session->terrain().overviewViewpoint(), playback,
+                                      0.1)) {
+                if (wallNode->stopped()) break;
+                kiosk->service().holding("no frame state from the wall leader");
+                --frame;
+                continue;
+            }
+            t = wallNode->dataTime();
+            vp = wallNode->viewpoint();
+            // The leader's briefing chapter: its layer overrides and caption on every screen.
+            if (!wallNode->isLeader() && wallNode->chapter() != session->chapterIndex())
+                session->setChapter(wallNode->chapter());
+            session->setOverlayLayout(wallNode->screen().overlayLayout());
+            session->terrain().setStepGate(wallNode->stepTime());
+        }
+        const int w = dpy.width(), h = dpy.height();
+        math::Camera cam =
+            vp ? makeCamera(*vp, session->terrain().bounds(), w, h, session->scenario().camera.fovY)
+               : makeCamera(session->terrain().overviewViewpoint(), session->terrain().bounds(), w,
+                            h, 45.0);
+        if (wallNode && vp)
+            cam = wallNode->screen().camera(*vp, session->terrain().bounds(),
+                                            session->scenario().camera.fovY);
+        if (offscreen)
+            offscreen->bind();
+        else
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        session->setPlayback(wallNode ? wallNode->playback() : playback);
+        if (!wallNode && governor.state().active) {  // walls: every screen at the same LOD
             session->terrain().setTau(governor.state().tauGeom, governor.state().tauTex);
             session->setRenderScale(governor.state().renderScale);
         }
         FrameRecord rec = session->drawFrame(cam, t, w, h);
         // Camera paths are known in advance: ask for the tiles of the view two seconds ahead.
-        const double aheadTime =
-            briefing ? briefing->timeAhead(kPrefetchSeconds) : clock.predict(kPrefetchSeconds);
-        if (auto ahead = session->viewpointAt(aheadTime, ""))
+        if (wallNode) {  // from the leader's playback state, through this screen's frustum
+            const scene::Playback p = wallNode->playback();
+            const double aheadTime = t + (p.paused ? 0.0 : p.rate * kPrefetchSeconds);
+            if (auto ahead = session->viewpointAt(aheadTime, ""))
+                session->terrain().prefetch(wallNode->screen().camera(
+                    *ahead, session->terrain().bounds(), session->scenario().camera.fovY));
+        } else if (auto ahead =
+                       session->viewpointAt(briefing ? briefing->timeAhead(kPrefetchSeconds)
+                                                     : clock.predict(kPrefetchSeconds),
+                                            ""))
             session->terrain().prefetch(makeCamera(*ahead, session->terrain().bounds(), w, h,
                                                    session->scenario().camera.fovY));
+        // Swap barrier: every node swaps this frame together (or the leader's deadline passes).
+        if (wallNode && !wallNode->barrier(*session, [&] { session->drawFrame(cam, t, w, h); })) {
+            --frame;  // the leader moved on or went silent: keep the last frame on screen
+            continue;
+        }
+        // The leader's first frame waits up to 10 s for the followers to join: that wait is
+        // start-up, not playback, so the next frame's dt starts after it (no data-time jump).
+        if (wallNode && wallNode->isLeader() && frame == 0) last = wall.now();
         if (!dpy.swapBuffers()) {
             KIOSK_LOG_ERROR(kTag, "presenting the frame failed; stopping");
             return kExitCannotRun;
         }
         if (offscreen) glFinish();
+        if (wallNode) wallNode->swapped(session->terrain().frameInfo());
         testCost.spend(frame, *session);
         // The frame's cost as the viewer sees it (update, draw, present), not the --max-fps wait.
         rec.frameMs = (wall.now() - now) * 1000.0;
@@ -364,6 +427,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             if (wait > 0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
         }
     }
+    if (wallNode) wallNode->stop();
     kiosk->service().stopping();
     if (stats) {
         stats->setBudgets(session->budgets());

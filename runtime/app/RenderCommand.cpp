@@ -13,6 +13,7 @@
 #include "runtime/app/FrameStats.h"
 #include "runtime/app/FrameOutput.h"
 #include "runtime/app/Session.h"
+#include "runtime/app/WallScreen.h"
 #include "runtime/core/Clock.h"
 #include "runtime/core/ExitCode.h"
 #include "runtime/core/Log.h"
@@ -34,7 +35,8 @@ constexpr double kSettleTimeoutSeconds = 120.0;
 
 constexpr const char* kUsage = "usage: geokiosk render SCENARIO --out OUT [--time T | "
                                "--from T0 --to T1 --fps N] [--size WxH] [--viewpoint NAME] "
-                               "[--stats STATS.json] [--reference lod|full] [--crf N] [--quiet]\n"
+                               "[--stats STATS.json] [--reference lod|full] [--crf N] [--quiet] "
+                               "[--wall WALL.json --screen ID]\n"
                                "  OUT: x.png | dir/ | x.mp4 (H.264) | x.mkv (FFV1 lossless) | "
                                "x.webm (VP9)\n";
 
@@ -47,7 +49,8 @@ int usage(const std::string& message) {
 
 int runRenderCommand(const std::vector<std::string>& argv) {
     Args args("render",
-              {"out", "time", "from", "to", "fps", "size", "viewpoint", "stats", "reference", "crf"},
+              {"out", "time", "from", "to", "fps", "size", "viewpoint", "stats", "reference", "crf",
+               "wall", "screen"},
               {"quiet"});
     if (!args.parse(argv)) return usage(args.error());
     if (args.help()) return showHelp(kUsage);
@@ -84,6 +87,16 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         if (!wh) return usage("--size wants WIDTHxHEIGHT, got '" + *size + "'");
         width = wh->first;
         height = wh->second;
+    }
+    // A wall's screen: its size and its off-axis part of the virtual camera (docs/wall.md).
+    int wallExit = -1;
+    const std::optional<WallScreen> wallScreen = wallScreenFromArgs(args, wallExit);
+    if (wallExit >= 0) return wallExit;
+    if (wallScreen) {
+        if (args.value("size"))
+            return usage("with --wall the screen's size comes from the wall file; drop --size");
+        width = wallScreen->width();
+        height = wallScreen->height();
     }
     if (const auto format = video::videoFormatForPath(*out);
         format && *format != video::VideoFormat::Ffv1Mkv && (width % 2 || height % 2))
@@ -144,6 +157,7 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         return kExitCannotRun;
     }
     Session& s = **session;
+    if (wallScreen) s.setOverlayLayout(wallScreen->overlayLayout());
     std::vector<double> times;
     std::vector<anim::BriefingFrame> frames;  // briefing export only: each frame's chapter
     std::vector<anim::ChapterFrames> chapterFrames;
@@ -219,8 +233,10 @@ int runRenderCommand(const std::vector<std::string>& argv) {
             printDiagnostics(vp.diagnostics);
             return kExitBadInput;
         }
-        const math::Camera cam = makeCamera(*vp, s.terrain().bounds(), width, height,
-                                            s.scenario().camera.fovY);
+        const math::Camera cam =
+            wallScreen
+                ? wallScreen->camera(*vp, s.terrain().bounds(), s.scenario().camera.fovY)
+                : makeCamera(*vp, s.terrain().bounds(), width, height, s.scenario().camera.fovY);
         target->bind();
         // Deterministic output: redraw until every tile of this view (and both frames of each
         // sequence pair) is resident, then keep that last, complete frame.

@@ -195,7 +195,7 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     }
     const double drawMs = msSince(tDraw);
     const auto tOverlay = PhaseClock::now();
-    drawOverlays(time, width, height);
+    mOverlayLayout ? drawWallOverlays(time, width, height) : drawOverlays(time, width, height);
     const double overlayMs = msSince(tOverlay);
 
     const auto& f = mScene->frameInfo();

@@ -65,6 +65,22 @@ public:
     void setPlayback(const scene::Playback& playback) { mPlayback = playback; }
 
     /**
+     * @brief Display walls (runtime/app/WallScreen): which of the legend, time label and title
+     * this output draws, each laid out in its own box (pixels, top-left origin; w == 0: the
+     * whole output), so no overlay straddles a bezel. nullopt: all, over the whole output.
+     * `corner`: the box's anchor corner (a canvas anchor), in place of the scenario's position.
+     */
+    struct OverlayBox {
+        bool shown = true;
+        int x = 0, y = 0, w = 0, h = 0;
+        std::optional<config::Corner> corner;
+    };
+    struct OverlayLayout {
+        OverlayBox legend, timeLabel, title;
+    };
+    void setOverlayLayout(std::optional<OverlayLayout> layout) { mOverlayLayout = layout; }
+
+    /**
      * @brief Briefing chapter `index` on (-1: none): its layer overrides apply at once, its
      * camera (viewpoint or path) replaces the scenario's in viewpointAt(), its caption shows.
      * (SessionBriefing.cpp)
@@ -98,6 +114,8 @@ private:
     std::vector<anim::ChapterSpan> computeChapterSpans() const;
     std::optional<math::Viewpoint> chapterViewpoint(double time) const;
     bool bindScaledTarget(int width, int height, int& outFbo);
+    /** @brief drawOverlays() once per wall overlay box (SessionWall.cpp). */
+    void drawWallOverlays(double time, int width, int height);
 
     std::unique_ptr<config::Scenario> mScenario;
     std::unique_ptr<scene::TerrainScene> mScene;
@@ -110,6 +128,14 @@ private:
     std::vector<color::LegendTick> mLegendTicks;
     std::vector<color::LegendPatch> mLegendPatches;
     float mCurtain = 0.0f;
+    std::optional<OverlayLayout> mOverlayLayout;
+    /** @brief Which overlays drawOverlays() draws (bits below) and the output height its font
+     * follows (0: the height it is given); set per box by drawWallOverlays(). */
+    unsigned mOverlayOnly = ~0u;
+    int mOverlayFontHeight = 0;
+    std::optional<config::Corner> mOverlayCorner;  ///< replaces the scenario's position (wall box)
+    static constexpr unsigned kOverlayLegend = 1, kOverlayTimeLabel = 2, kOverlayTitle = 4,
+                              kOverlayStatus = 8;
     anim::CameraPath mPath;
     anim::TimeZone mZone;
     double mStart = 0, mEnd = 0;

@@ -46,7 +46,8 @@ render::Anchor anchorOf(config::Corner c) {
 
 void Session::drawOverlays(double time, int width, int height) {
     // Text scales with the output: legible on a wall at 4K, not covering a 320-pixel preview.
-    const int fontPx = std::clamp(height / 40, 10, 40);
+    const int fontPx =
+        std::clamp((mOverlayFontHeight > 0 ? mOverlayFontHeight : height) / 40, 10, 40);
     if (fontPx != mOverlayFontPx) {
         mOverlayFontPx = fontPx;
         mOverlay.reset();
@@ -71,7 +72,9 @@ void Session::drawOverlays(double time, int width, int height) {
     const auto& frameInfo = mScene->frameInfo();
     const bool buffering = frameInfo.holdingSequence;
     if (buffering && !std::isnan(frameInfo.heldDataTime)) time = frameInfo.heldDataTime;
-    if (ov.timeLabel.enabled && mEnd > mStart) {
+    // On a wall, drawWallOverlays() draws each overlay in its own box (mOverlayOnly bits).
+    const auto at = [&](config::Corner c) { return anchorOf(mOverlayCorner.value_or(c)); };
+    if ((mOverlayOnly & kOverlayTimeLabel) && ov.timeLabel.enabled && mEnd > mStart) {
         // Formatted into fixed buffers: the label changes every frame and the frame loop must
         // not allocate (tests/scenario/FrameAllocGLTest.cpp).
         char label[192];
@@ -88,19 +91,20 @@ void Session::drawOverlays(double time, int width, int height) {
             std::snprintf(label + len, sizeof label - len, "  (%s)", elapsed);
         }
         const float w = o.measure(label) + 24.0f;
-        const render::Box b = mLayout.place(anchorOf(ov.timeLabel.position), w, line + 16);
+        const render::Box b = mLayout.place(at(ov.timeLabel.position), w, line + 16);
         o.rect(b.x, b.y, b.w, b.h, kPanel);
         o.text(b.x + 12, b.y + 8 + ascent, label, kText);
     }
-    if (ov.title.enabled && (!sc.title.empty() || !sc.caption.empty())) {
+    if ((mOverlayOnly & kOverlayTitle) && ov.title.enabled &&
+        (!sc.title.empty() || !sc.caption.empty())) {
         const float w = std::max(o.measure(sc.title), o.measure(sc.caption)) + 24.0f;
         const float h = (sc.caption.empty() ? 1.0f : 2.0f) * line + 16.0f;
-        const render::Box b = mLayout.place(anchorOf(ov.title.position), w, h);
+        const render::Box b = mLayout.place(at(ov.title.position), w, h);
         o.rect(b.x, b.y, b.w, b.h, kPanel);
         o.text(b.x + 12, b.y + 8 + ascent, sc.title, kText);
         if (!sc.caption.empty()) o.text(b.x + 12, b.y + 8 + line + ascent, sc.caption, kDim);
     }
-    if (ov.progress.enabled && mEnd > mStart) {
+    if ((mOverlayOnly & kOverlayTimeLabel) && ov.progress.enabled && mEnd > mStart) {
         // A thin bar along the top or bottom edge (its position's vertical half).
         const bool top = ov.progress.position == config::Corner::Top ||
                          ov.progress.position == config::Corner::TopLeft ||
@@ -110,7 +114,13 @@ void Session::drawOverlays(double time, int width, int height) {
         o.rect(12, y, float(width) - 24, 4, glm::vec4(1, 1, 1, 0.3f));
         o.rect(12, y, (float(width) - 24) * frac, 4, kText);
     }
-    if (ov.legend.enabled) drawLegend(ov.legend, width, height);
+    if ((mOverlayOnly & kOverlayLegend) && ov.legend.enabled) drawLegend(ov.legend, width, height);
+    if (!(mOverlayOnly & kOverlayStatus)) {  // a wall box of one overlay only
+        // The chapter caption goes with the title (on a wall: once, in the title's box).
+        if (mOverlayOnly & kOverlayTitle) drawCaption(width, height);
+        o.end();
+        return;
+    }
     // Layer problems are always shown: an operator must see why a layer is missing.
     const render::Anchor statusAt = anchorOf(ov.status.position);
     auto statusLine = [&](std::string_view text, const glm::vec4& color) {
@@ -150,7 +160,7 @@ void Session::drawOverlays(double time, int width, int height) {
         if (n > 140) std::snprintf(text + 137, sizeof text - 137, "...");
         statusLine(text, st.state == scene::LayerState::Ready ? kDim : kWarn);
     }
-    drawCaption(width, height);
+    if (mOverlayOnly & kOverlayTitle) drawCaption(width, height);
     if (mCurtain > 0.0f) o.rect(0, 0, float(width), float(height), glm::vec4(0, 0, 0, mCurtain));
     o.end();
 }
@@ -245,7 +255,7 @@ void Session::drawLegend(const config::LegendOverlay& legend, int width, int hei
     const std::string& title = mLegendTitle;
     const float line = float(o.font().lineHeight());
     const float ascent = float(o.font().ascent());
-    const render::Anchor at = anchorOf(legend.position);
+    const render::Anchor at = anchorOf(mOverlayCorner.value_or(legend.position));
     if (tf.discrete()) {
         const auto& patches = mLegendPatches;
         float w = o.measure(title);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdio>
 
 namespace kiosk {
 
@@ -44,6 +45,12 @@ std::optional<std::pair<int, int>> parseSize(std::string_view text) {
     if (r2.ec != std::errc{} || r2.ptr != text.data() + text.size()) return std::nullopt;
     if (w <= 0 || h <= 0 || w > 16384 || h > 16384) return std::nullopt;
     return std::pair{w, h};
+}
+
+std::string shortNumber(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
 }
 
 }  // namespace kiosk

@@ -5,6 +5,7 @@
 #include "runtime/import/CfTime.h"
 #include "runtime/import/GdalRaster.h"
 #include "runtime/import/GeoTarget.h"
+#include "runtime/import/ImageryResolution.h"
 #include "runtime/import/Pyramid.h"
 #include "runtime/import/SourceUnits.h"
 #include "runtime/import/SwwMesh.h"
@@ -81,9 +82,11 @@ void windowExtent(const io::TileGrid& g, const GridWindow& w, double& x0, double
     y0 = g.maxY - w.y1 * p;
 }
 
-// Place a GDAL source on the store grid, defining the grid first for a new store.
+// Place a GDAL source on the store grid (or `onGrid`, a refinement of it), defining the grid
+// first for a new store.
 Result<PlacedSource> placeSource(io::StoreWriter& w, GdalDataset src, const PlaceOptions& po,
-                                 int tileSize, Diagnostics& warnings) {
+                                 int tileSize, Diagnostics& warnings,
+                                 const io::TileGrid* onGrid = nullptr) {
     if (!w.grid()) {
         auto planned = planGrid(std::move(src), po, tileSize);
         if (!planned) return planned.diagnostics;
@@ -95,7 +98,7 @@ Result<PlacedSource> placeSource(io::StoreWriter& w, GdalDataset src, const Plac
                              "(give --assign-crs EPSG:N if it is known)");
         return std::move(planned->placed);
     }
-    auto ps = placeOnGrid(std::move(src), *w.grid(), po);
+    auto ps = placeOnGrid(std::move(src), onGrid ? *onGrid : *w.grid(), po);
     // A store on the local CRS holds only CRS-less data: nothing to warn about.
     if (ps && w.grid()->srsId != localCrs().srsId)
         for (const auto& m : ps->warnings)
@@ -298,10 +301,18 @@ static Diagnostics importImageryImpl(const std::string& source, const ImportOpti
         }
         PlaceOptions po = placeOptions(o, source);
         po.imagery = true;
-        auto ps = placeSource(w, std::move(*src), po, o.tileSize, warnings);
+        // Its own resolution: finer imagery gets levels below the grid's finest.
+        std::optional<std::string> assignWkt;
+        if (const auto& a = o.assignCrs ? o.assignCrs : o.crs)
+            if (auto c = crsFromUser(*a)) assignWkt = c->wkt;
+        const int extra = imageryExtraLevels(raw(*src), *w.grid(),
+                                             io::StoreWriter::kMaxExtraImageryLevels,
+                                             o.memoryBudget, assignWkt);
+        const io::TileGrid grid = refinedGrid(*w.grid(), extra);
+        auto ps = placeSource(w, std::move(*src), po, o.tileSize, warnings, &grid);
         if (!ps) return ps.diagnostics;
-        e.append(
-            w.createImageryLayer(o.name, "imported from " + fs::path(source).filename().string()));
+        e.append(w.createImageryLayer(
+            o.name, "imported from " + fs::path(source).filename().string(), extra));
         if (e.hasErrors()) return e;
         PyramidOptions opt;
         opt.table = o.name;
@@ -310,12 +321,12 @@ static Diagnostics importImageryImpl(const std::string& source, const ImportOpti
         opt.progress = &progress;
         opt.failAfterTiles = o.failAfterTiles;
         opt.sourceName = source;
-        progress.begin(o.name, estimateTiles(*w.grid(), ps->window));
-        auto r = buildImageryPyramid(w, *w.grid(), ps->window, rgbaRows(*ps, source), opt);
+        progress.begin(o.name, estimateTiles(grid, ps->window));
+        auto r = buildImageryPyramid(w, grid, ps->window, rgbaRows(*ps, source), opt);
         if (!r) return r.diagnostics;
         progress.finish();
         double x0, y0, x1, y1;
-        windowExtent(*w.grid(), ps->window, x0, y0, x1, y1);
+        windowExtent(grid, ps->window, x0, y0, x1, y1);
         e.append(r.diagnostics);
         e.append(w.finishLayer(o.name, 0, 255, x0, y0, x1, y1));
         return e;

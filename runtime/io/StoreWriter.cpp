@@ -247,7 +247,7 @@ Diagnostics StoreWriter::registerExtension(const std::string& table, const char*
 }
 
 Diagnostics StoreWriter::insertMatrices(const std::string& table, const std::string& dataType,
-                                        const std::string& description) {
+                                        const std::string& description, int extraLevels) {
     Diagnostics d;
     if (!mGrid) {
         d.error("STORE_NO_GRID", mDb.path(), table, "store has no tile grid yet");
@@ -301,7 +301,12 @@ Diagnostics StoreWriter::insertMatrices(const std::string& table, const std::str
     }
     auto m = mDb.prepare("INSERT INTO gpkg_tile_matrix VALUES (?,?,?,?,?,?,?,?)");
     if (!m) return m.diagnostics;
-    for (const TileMatrix& tm : g.levels) {
+    // Imagery finer than the grid continues its pyramid: the same extent, pixels halved.
+    TileGrid own = g;
+    own.setPyramid(int(g.levels.size()) + extraLevels, g.levels.back().tileWidth,
+                   g.levels.back().tileHeight,
+                   g.levels.back().pixelXSize / double(1 << extraLevels));
+    for (const TileMatrix& tm : own.levels) {
         m->reset();
         m->bind(1, std::string_view(table));
         m->bindInt(2, tm.level);
@@ -371,15 +376,21 @@ Diagnostics StoreWriter::createScalarLayer(const ScalarLayerSpec& spec) {
 }
 
 Diagnostics StoreWriter::createImageryLayer(const std::string& table,
-                                            const std::string& description) {
-    Diagnostics d = insertMatrices(table, "tiles", description);
+                                            const std::string& description, int extraLevels) {
+    Diagnostics d;
+    if (extraLevels < 0 || extraLevels > kMaxExtraImageryLevels) {
+        d.error("STORE_BAD_LEVELS", mDb.path(), table, "imagery may refine the grid by 0 to " +
+                    std::to_string(kMaxExtraImageryLevels) + " levels");
+        return d;
+    }
+    d = insertMatrices(table, "tiles", description, extraLevels);
     if (d.hasErrors()) return d;
     auto l = mDb.prepare(
         "INSERT INTO kiosk_layers (table_name, kind, units, levels, tile_count, "
         "description) VALUES (?, 'imagery', '', ?, 0, ?)");
     if (!l) return l.diagnostics;
     l->bind(1, std::string_view(table));
-    l->bindInt(2, int(mGrid->levels.size()));
+    l->bindInt(2, int(mGrid->levels.size()) + extraLevels);
     l->bind(3, std::string_view(description));
     if (l->step() != SQLITE_DONE) d.add(mDb.error("STORE_SQL", kLayersTable, table));
     return d;

@@ -59,7 +59,14 @@ public:
     static bool validTableName(const std::string& name);
 
     Diagnostics createScalarLayer(const ScalarLayerSpec& spec);
-    Diagnostics createImageryLayer(const std::string& table, const std::string& description);
+    /** @brief Most pyramid levels an imagery layer may add below the grid's finest. */
+    static constexpr int kMaxExtraImageryLevels = 3;
+    /**
+     * @brief An imagery layer; `extraLevels` > 0 continues its pyramid that many levels finer
+     * than the grid (same extent, pixel size halved per level): imagery at its own resolution.
+     */
+    Diagnostics createImageryLayer(const std::string& table, const std::string& description,
+                                   int extraLevels = 0);
     Diagnostics putScalarTile(const std::string& table, const TileId& id,
                               const EncodedScalarTile& tile);
     Diagnostics putImageTile(const std::string& table, const TileId& id,
@@ -92,7 +99,7 @@ private:
     Diagnostics createSchema();
     Diagnostics loadGrid();
     Diagnostics insertMatrices(const std::string& table, const std::string& dataType,
-                               const std::string& description);
+                               const std::string& description, int extraLevels = 0);
     Diagnostics registerExtension(const std::string& table, const char* column,
                                   const std::string& extension, const std::string& definition);
 

@@ -29,11 +29,16 @@ glm::dmat4 Camera::view(const glm::dvec3& origin) const {
 }
 
 glm::dmat4 Camera::projection() const {
+    if (window)
+        return glm::frustum(window->left * nearPlane, window->right * nearPlane,
+                            window->bottom * nearPlane, window->top * nearPlane, nearPlane,
+                            farPlane);
     return glm::perspective(glm::radians(fovYDeg), aspect, nearPlane, farPlane);
 }
 
 double Camera::pixelsPerMetreAt(double distance) const {
     const double d = std::max(distance, 1e-6);
+    if (window) return double(viewportHeight) / ((window->top - window->bottom) * d);
     return double(viewportHeight) / (2.0 * std::tan(glm::radians(fovYDeg) * 0.5) * d);
 }
 

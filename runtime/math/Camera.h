@@ -2,6 +2,8 @@
 
 #include "runtime/math/Glm.h"
 
+#include <optional>
+
 namespace kiosk::math {
 
 /**
@@ -16,6 +18,18 @@ struct Viewpoint {
     double range = 1000.0;
 };
 
+/**
+ * @brief An off-axis image-plane window in tangent units: the view-space rectangle
+ * [left, right] x [bottom, top] at unit distance in front of the eye (x right, y up).
+ * A symmetric camera is [-tan(fovY/2) aspect, +...] x [-tan(fovY/2), +tan(fovY/2)].
+ */
+struct ImageWindow {
+    double left = -1.0;
+    double right = 1.0;
+    double bottom = -1.0;
+    double top = 1.0;
+};
+
 /** @brief A perspective camera in double precision. */
 struct Camera {
     glm::dvec3 eye{0.0};
@@ -27,6 +41,12 @@ struct Camera {
     double farPlane = 100000.0;
     int viewportWidth = 1280;
     int viewportHeight = 720;
+    /**
+     * @brief Set for one screen of a display wall: the projection is glm::frustum over this
+     * window (asymmetric) instead of the symmetric fovY/aspect one, and the pixel density used
+     * by the screen-space error follows the window's height (runtime/wall/ScreenFrustum.h).
+     */
+    std::optional<ImageWindow> window;
 
     static Camera fromViewpoint(const Viewpoint& vp, int viewportWidth, int viewportHeight,
                                 double fovYDeg = 45.0);
@@ -36,7 +56,8 @@ struct Camera {
     glm::dmat4 projection() const;
     /**
      * @brief Pixels per metre of a length seen face-on at `distance` metres:
-     * viewportHeight / (2 tan(fovY/2) distance). Screen-space error = error * this.
+     * viewportHeight / (2 tan(fovY/2) distance), or viewportHeight / ((top - bottom) distance)
+     * with an off-axis window. Screen-space error = error * this.
      */
     double pixelsPerMetreAt(double distance) const;
     /** @brief Near/far planes chosen to bracket a scene of the given world bounds. */

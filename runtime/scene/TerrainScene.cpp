@@ -280,6 +280,22 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
     s->mCache = std::make_unique<terrain::TerrainTileCache>(budget, kCacheSlots);
     s->mResidency = std::make_unique<terrain::CacheResidency>(*s->mCache, true);
     s->mGpu.resize(kCacheSlots);
+    // Imagery imported finer than the elevation grid (ImageryResolution.h) has levels below the
+    // grid's finest: the selector's grid continues the pyramid so tauTex can reach them.
+    int finestTexture = setup.grid.maxLevel();
+    for (const auto& t : setup.textures) {
+        s->mOptions.textureLevelsBeyondGeometry =
+            std::max(s->mOptions.textureLevelsBeyondGeometry, t.maxLevel - setup.geometryMaxLevel);
+        finestTexture = std::max(finestTexture, t.maxLevel);
+    }
+    if (finestTexture > setup.grid.maxLevel() && !setup.grid.levels.empty()) {
+        const io::TileMatrix& f = setup.grid.levels.back();
+        const int extra = finestTexture - setup.grid.maxLevel();
+        setup.grid.setPyramid(finestTexture + 1, f.tileWidth, f.tileHeight,
+                              f.pixelXSize / double(1 << extra));
+        // Clip margins of texture-only nodes are a quarter of *their* level's pixel.
+        s->mGrid = setup.grid;
+    }
     setup.options = s->mOptions;
     setup.heightMin = s->mElevation->minValue;
     setup.heightMax = s->mElevation->maxValue;
@@ -449,6 +465,8 @@ void TerrainScene::update(const math::Camera& camera, double time) {
                         unsigned(k.layer), k.frame, k.id.level, k.id.column, k.id.row);
     }
     const bool requestsPending = !mSelection->requests.empty();
+    // Display walls: the pair shown is the one at the wall's step time (TerrainSceneWall.cpp).
+    applyStepGate(camera, time, wanted);
 
     for (std::size_t i = 0; i < mLayers.size(); ++i) {
         StackLayer& l = mLayers[i];

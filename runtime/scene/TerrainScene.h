@@ -78,6 +78,8 @@ struct SceneFrameInfo {
     std::uint32_t mappingsCulledSize = 0;     ///< screen-space size rho below the threshold
     std::uint32_t mappingsOverCapacity = 0;   ///< active but beyond the uniform block
     double uploadMs = 0;                   ///< GPU uploads (and evicted releases) this frame
+    /** @brief Every sequence pair at this frame's own time is resident (a wall may step to it). */
+    bool wantedSequenceResident = true;
     /** @brief The procedural detail grid drew this frame (overlay: "procedural detail"). */
     bool proceduralDetail = false;
 };
@@ -127,6 +129,12 @@ public:
      * the current pair and its neighbours).
      */
     void update(const math::Camera& camera, double time, const Playback& playback);
+    /**
+     * @brief Display walls (runtime/wall): sequences show the pair bracketing `stepTime` (which
+     * every node of the wall reported resident) while the pair at the frame's own time loads;
+     * nullopt (the default) shows the pair at the frame's time as soon as it is complete.
+     */
+    void setStepGate(std::optional<double> stepTime) { mStepGate = stepTime; }
     /** @brief Request tiles for a future view (camera path prefetch); low priority. */
     void prefetch(const math::Camera& futureCamera);
     void draw(const math::Camera& camera, const render::TerrainStyle& style);
@@ -242,6 +250,9 @@ private:
     void noteFailure(const terrain::TilePayload& payload);
     bool sequenceFrameComplete(const StackLayer& layer, bool useA) const;
     // TerrainScenePrefetch.cpp: sequence prefetch ahead of the playhead.
+    /** @brief Note whether `wanted` is resident, then retarget it to the step gate (walls). */
+    void applyStepGate(const math::Camera& camera, double time,
+                       std::vector<anim::FrameBracket>& wanted);
     void planSequencePrefetch();
     void countPrefetchHits(StackLayer& layer, bool reported);
     void recordLoadTime(const loader::LoadResult& result);
@@ -292,6 +303,7 @@ private:
     std::size_t mFirstSequenceLayer = SIZE_MAX;  ///< the layer whose frames frameInfo() reports
     bool mSettled = false;
     Playback mPlayback;
+    std::optional<double> mStepGate;
     anim::LoadTimeEstimator mTileLoad{0.005};  ///< seconds per sequence tile on the loader
     std::vector<terrain::TileRequest> mSequencePrefetch;
     std::vector<anim::FrameBracket> mWanted;  ///< per layer: the frame pair the clock wants

@@ -102,6 +102,14 @@ void TileSelector::nodeDomain(const TileId& id, const TileId& geometry, bool mes
     min = glm::dvec2(x0 + 0.5 * px, y0 - 0.5 * py);
     max = glm::dvec2(x1 + 0.5 * px, y1 - 0.5 * py);
     if (!meshIsGeometry) return;  // an ancestor drawn while G loads has no skirts on G's border
+    if (id.level > mSetup.geometryMaxLevel) {
+        // Finer than any mesh (imagery at its own resolution): the node's sides inside G are its
+        // texture tile's own edges, so its texture covers all it draws (shifted by half a post,
+        // each node showed a strip of its neighbour's ground with its own clamped edge texels).
+        // Siblings cut the same mesh there, so the shared edge cannot crack (fragment clip).
+        min = glm::dvec2(x0, y0);
+        max = glm::dvec2(x1, y1);
+    }
     // Sides on G's border keep G's skirts (their bottoms flare to half a post past the surface).
     const int span = 1 << (id.level - geometry.level);
     if (id.column % span == 0) min.x = x0 - px;
@@ -222,7 +230,9 @@ void TileSelector::emit(const TileId& id, const NodeInfo& info, double distance,
     tile.fromAncestor = coarser;
     tile.clipped = gk.id != id;
     tile.geometricErrorPx = levelError(gk.id, gk.frame) * ppm;
-    tile.domainLevel = wantedGeom.level;
+    // Texture-only nodes (finer than the finest mesh) clip at their own tile edges (nodeDomain).
+    tile.domainLevel =
+        id.level > mSetup.geometryMaxLevel && gk.id == wantedGeom ? id.level : wantedGeom.level;
     nodeDomain(id, wantedGeom, gk.id == wantedGeom, tile.clipMin, tile.clipMax);
 
     // Textures, per layer (Döllner's texture loop): coarsest level whose texel is fine enough.

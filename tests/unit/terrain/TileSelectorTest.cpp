@@ -359,10 +359,11 @@ TEST(TileSelector, TextureFinerThanGeometryDrawsClippedGeometry) {
     expectExactTiling(r, cam);
 }
 
-// Issue 12 (cracks): a node refined for texture only covers its share of its geometry tile
-// G's mesh, on G's post grid (half a post of G's level east/south of the node's bounds), and
-// sides on G's border are opened so G's surface and skirts are kept there. Clipping at the
-// node's own half post cut G's surface short on its east/south border and dropped its skirts.
+// Issue 12 (cracks): a node refined for texture only keeps sides on its geometry tile G's
+// border opened so G's surface and skirts are kept there (clipping at the node's own half post
+// cut G's surface short on its east/south border and dropped its skirts). Issue 16: its sides
+// inside G are its own tile edges, so its texture covers everything it draws (on G's post grid,
+// half a post off, each node showed a strip of its neighbour's ground in clamped texels).
 TEST(TileSelector, TextureOnlyNodesCoverTheirShareOfTheGeometryMesh) {
     TerrainOptions opt;
     opt.textureLevelsBeyondGeometry = 2;
@@ -373,16 +374,16 @@ TEST(TileSelector, TextureOnlyNodesCoverTheirShareOfTheGeometryMesh) {
     for (const DrawTile& t : r.tiles) {
         if (!t.clipped) continue;
         ASSERT_FALSE(t.fromAncestor);
-        EXPECT_EQ(t.domainLevel, t.geometry.id.level);
+        EXPECT_EQ(t.domainLevel, t.id.level);  // clip edges on the node's own tile edges
         const double gp = 16.0 / double(1 << t.geometry.id.level);  // G's post spacing
         double x0, y0, x1, y1, gx0, gy0, gx1, gy1;
         tileBounds(t.id, x0, y0, x1, y1);
         tileBounds(t.geometry.id, gx0, gy0, gx1, gy1);
         // West/north: G's skirt bottom lies on G's bounds; east/south: a post of G outside.
-        EXPECT_EQ(t.clipMin.x, x0 == gx0 ? gx0 - gp : x0 + 0.5 * gp);
-        EXPECT_EQ(t.clipMax.y, y1 == gy1 ? gy1 + gp : y1 - 0.5 * gp);
-        EXPECT_EQ(t.clipMax.x, x1 == gx1 ? gx1 + 2.0 * gp : x1 + 0.5 * gp);
-        EXPECT_EQ(t.clipMin.y, y0 == gy0 ? gy0 - 2.0 * gp : y0 - 0.5 * gp);
+        EXPECT_EQ(t.clipMin.x, x0 == gx0 ? gx0 - gp : x0);
+        EXPECT_EQ(t.clipMax.y, y1 == gy1 ? gy1 + gp : y1);
+        EXPECT_EQ(t.clipMax.x, x1 == gx1 ? gx1 + 2.0 * gp : x1);
+        EXPECT_EQ(t.clipMin.y, y0 == gy0 ? gy0 - 2.0 * gp : y0);
         // G's mesh surface spans [gx0 + gp/2, gx1 + gp/2]: every node on G's east border
         // reaches past it (the old clip stopped a quarter post of the node's level past x1).
         if (x1 == gx1) {
