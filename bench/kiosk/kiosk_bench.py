@@ -35,6 +35,7 @@ def scrape(port):
         text = r.read().decode()
     out = {}
     for name in ("geokiosk_frames_total", "geokiosk_resident_memory_bytes",
+                 "geokiosk_heap_in_use_bytes",
                  "geokiosk_frame_time_ms_sum", "geokiosk_frame_time_ms_count",
                  "geokiosk_reloads_total", "geokiosk_reload_failures_total"):
         m = re.search(r"^%s (\S+)$" % name, text, re.M)
@@ -93,6 +94,9 @@ def soak(a, tmp):
               "warmup_frames": int(warm["geokiosk_frames_total"]),
               "rss_mb_at_end": round(end["geokiosk_resident_memory_bytes"] / 2**20, 2),
               "rss_growth_mb": round(growth, 2), "goal_growth_mb": 2.0,
+              # malloc'd bytes still in use: tells a leak (grows) from fragmentation (flat)
+              "heap_mb_after_warmup": round(warm["geokiosk_heap_in_use_bytes"] / 2**20, 2),
+              "heap_mb_at_end": round(end["geokiosk_heap_in_use_bytes"] / 2**20, 2),
               "mean_frame_ms": round(end["geokiosk_frame_time_ms_sum"] /
                                      end["geokiosk_frame_time_ms_count"], 3),
               "wall_seconds": round(elapsed, 1), "exit": rc}

@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <malloc.h>
 #include <thread>
 
 namespace kiosk::app {
@@ -114,6 +115,15 @@ KioskHooks::Requests KioskHooks::applyControl(anim::ScenarioClock& clock) {
 
 void KioskHooks::frameDone(Session& session, const anim::ScenarioClock& clock,
                            const std::filesystem::path& scenario, double frameMs, double dataTime) {
+    if (&session != mLastDrawn) {
+        // A session was replaced (reload, playlist step, store swap) and the old one is gone.
+        // Its heap is freed but glibc keeps the pages (free chunks below the new session's
+        // blocks cannot leave the brk heap): measured, RSS stayed ~8 MB higher over 45 reloads
+        // with the heap in use the same (geokiosk_heap_in_use_bytes). malloc_trim gives every
+        // free page back (madvise), once per swap, off the steady frame path.
+        if (mLastDrawn) malloc_trim(0);
+        mLastDrawn = &session;
+    }
     service::ServiceSnapshot& s = mService->snapshot();
     const scene::SceneFrameInfo& fi = session.terrain().frameInfo();
     if (fi.holdingSequence) ++s.heldFrames;

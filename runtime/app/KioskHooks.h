@@ -85,7 +85,9 @@ private:
     int mPendingStep = 0;
     StoreWatch mStores;
     const Session* mWatched = nullptr;  ///< session whose stores mStores watches
-    bool mAtStepBoundary = true;        ///< the shown sequence step changed (or none, paused)
+    /// session of the previous frame (compared only, never dereferenced: it may be gone)
+    const Session* mLastDrawn = nullptr;
+    bool mAtStepBoundary = true;  ///< the shown sequence step changed (or none, paused)
     std::int32_t mLastShownFrame = -2;
     bool mKeepTime = false;
     double mRetryAt = 0;  ///< after a failed switch, the next attempt (monotonic seconds)

@@ -358,6 +358,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
                                       vp ? *vp : session->terrain().overviewViewpoint(), playback,
                                       0.1)) {
                 if (wallNode->stopped()) break;
+                kiosk->service().holding("no frame state from the wall leader");
                 --frame;
                 continue;
             }

@@ -55,6 +55,7 @@ bool HttpServer::start(const ListenAddress& address, HttpEndpoints endpoints, st
         const ServiceSnapshot snap = ep->snapshots->read();
         ProcessFigures proc;
         proc.rssBytes = readRssBytes();
+        proc.heapBytes = readHeapInUseBytes();
         proc.uptimeSeconds = ep->now() - snap.startedAt;
         res.set_content(renderMetrics(snap, proc), kMetricsContentType);
     });

@@ -58,6 +58,7 @@ void KioskService::frameCompleted(double frameMs) {
     mSnap.frames++;
     mSnap.frameMs.observe(kFrameMsBuckets, frameMs);
     mSnap.lastFrameAt = now;
+    mSnap.holding.clear();
     if (mFpsWindowStart < 0) mFpsWindowStart = now;
     ++mFpsWindowFrames;
     if (now - mFpsWindowStart >= 1.0) {
@@ -66,8 +67,18 @@ void KioskService::frameCompleted(double frameMs) {
         mFpsWindowFrames = 0;
     }
     mBox.publish(mSnap);
-    if (!mNotifier.enabled()) return;
-    const WatchdogPacer::Due due = mPacer.frameCompleted(now);
+    if (mNotifier.enabled()) notify(mPacer.frameCompleted(now));
+}
+
+void KioskService::holding(const std::string& why) {
+    if (mSnap.holding != why) {
+        mSnap.holding = why;
+        mBox.publish(mSnap);
+    }
+    if (mNotifier.enabled()) notify(mPacer.holding(monotonicSeconds()));
+}
+
+void KioskService::notify(const WatchdogPacer::Due& due) {
     std::string msg;
     if (due.ready) msg += "READY=1\n";
     if (due.watchdog) msg += "WATCHDOG=1\n";
@@ -86,6 +97,7 @@ std::string KioskService::statusLine() const {
     if (mSnap.storeDegraded) degraded += (degraded.empty() ? "" : ",") + std::string("store");
     line += degraded.empty() ? ", all layers ready" : ", degraded: " + degraded;
     if (mSnap.paused) line += ", paused";
+    if (!mSnap.holding.empty()) line += ", holding: " + mSnap.holding;
     return line;
 }
 

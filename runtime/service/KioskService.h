@@ -39,6 +39,11 @@ public:
      * (first frame), WATCHDOG (paced) and STATUS to systemd.
      */
     void frameCompleted(double frameMs);
+    /**
+     * @brief No frame this iteration, on purpose: `why` names the cause for /health and STATUS;
+     * the watchdog keeps being fed because the loop is alive. Cleared by the next frameCompleted().
+     */
+    void holding(const std::string& why);
     /** @brief Control commands received since the last call (HTTP thread -> frame loop). */
     const std::vector<ControlCommand>& takeControl();
     /** @brief Tell systemd the kiosk is stopping (STOPPING=1). */
@@ -49,6 +54,7 @@ public:
 private:
     KioskService() = default;
     std::string statusLine() const;
+    void notify(const WatchdogPacer::Due& due);
 
     ServiceSnapshot mSnap;
     SnapshotBox mBox;

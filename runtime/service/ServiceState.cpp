@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <malloc.h>
 #include <unistd.h>
 
 namespace kiosk::service {
@@ -18,6 +19,8 @@ HealthVerdict evaluateHealth(const ServiceSnapshot& s, double now, double stallS
                       stallSeconds);
         reason = buf;
     }
+    if (!reason.empty() && !s.holding.empty())
+        reason = s.holding + ": " + reason + (s.lastFrameAt >= 0 ? ", last frame kept" : "");
     body["status"] = reason.empty() ? "ok" : "stalled";
     if (!reason.empty()) body["reason"] = reason;
     body["frames"] = s.frames;
@@ -51,6 +54,11 @@ std::uint64_t readRssBytes() {
     const int n = std::fscanf(f, "%llu %llu", &size, &resident);
     std::fclose(f);
     return n == 2 ? resident * std::uint64_t(sysconf(_SC_PAGESIZE)) : 0;
+}
+
+std::uint64_t readHeapInUseBytes() {
+    const struct mallinfo2 mi = mallinfo2();
+    return std::uint64_t(mi.uordblks) + std::uint64_t(mi.hblkhd);  // arena chunks + mmapped
 }
 
 std::string renderMetrics(const ServiceSnapshot& s, const ProcessFigures& process) {
@@ -100,6 +108,9 @@ std::string renderMetrics(const ServiceSnapshot& s, const ProcessFigures& proces
     w.sample(s.fps);
     w.family("geokiosk_resident_memory_bytes", "Resident set size of the process.", T::Gauge);
     w.sample(double(process.rssBytes));
+    w.family("geokiosk_heap_in_use_bytes", "C heap bytes allocated and not freed (mallinfo2).",
+             T::Gauge);
+    w.sample(double(process.heapBytes));
     w.family("geokiosk_uptime_seconds", "Seconds since the kiosk started.", T::Gauge);
     w.sample(process.uptimeSeconds);
     return w.text();

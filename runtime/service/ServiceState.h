@@ -51,6 +51,9 @@ struct ServiceSnapshot {
     std::uint64_t storeSwaps = 0;  ///< stores replaced on disk and taken over
     std::vector<std::pair<std::string, std::uint64_t>> storeFiles;  ///< path, inode on screen
     std::vector<std::string> warnings;  ///< e.g. skipped playlist entries (shown by /health)
+    /** @brief Why the loop keeps the last frame on purpose (empty: it does not), e.g. a wall
+     * follower whose leader went silent; /health names it instead of a bare stall. */
+    std::string holding;
 };
 
 /** @brief The mailbox between the frame loop (writer) and the HTTP thread (reader). */
@@ -85,10 +88,16 @@ HealthVerdict evaluateHealth(const ServiceSnapshot& s, double now, double stallS
 /** @brief Process figures read by the HTTP thread (not the render thread). */
 struct ProcessFigures {
     std::uint64_t rssBytes = 0;
+    std::uint64_t heapBytes = 0;  ///< malloc'd and still in use (all arenas)
     double uptimeSeconds = 0;
 };
 /** @brief Resident set size from /proc/self/statm (0 if unreadable). */
 std::uint64_t readRssBytes();
+/**
+ * @brief Bytes the C heap hands out and has not been given back (glibc mallinfo2, all arenas):
+ * RSS growth with a flat heap is fragmentation or mappings, a growing heap is a leak.
+ */
+std::uint64_t readHeapInUseBytes();
 
 /** @brief The /metrics text for a snapshot. */
 std::string renderMetrics(const ServiceSnapshot& s, const ProcessFigures& process);

@@ -11,6 +11,17 @@ WatchdogPacer::Due WatchdogPacer::frameCompleted(double now) noexcept {
         due.ready = true;
         mReadySent = true;
     }
+    pace(due, now);
+    return due;
+}
+
+WatchdogPacer::Due WatchdogPacer::holding(double now) noexcept {
+    Due due;
+    pace(due, now);
+    return due;
+}
+
+void WatchdogPacer::pace(Due& due, double now) noexcept {
     if (mWatchdogUsec > 0 && now - mLastPing >= pingInterval()) {
         due.watchdog = true;
         mLastPing = now;
@@ -19,7 +30,6 @@ WatchdogPacer::Due WatchdogPacer::frameCompleted(double now) noexcept {
         due.status = true;
         mLastStatus = now;
     }
-    return due;
 }
 
 SdNotifier::SdNotifier() {

@@ -27,11 +27,19 @@ public:
     };
     /** @brief A frame completed at monotonic time `now` (seconds). */
     Due frameCompleted(double now) noexcept;
+    /**
+     * @brief The loop is alive but keeps its last frame on purpose (a wall follower waiting for a
+     * silent leader): WATCHDOG and STATUS as paced, never READY. A restart would not bring the
+     * leader back and would drop the frame on screen.
+     */
+    Due holding(double now) noexcept;
 
     double pingInterval() const noexcept { return double(mWatchdogUsec) * 1e-6 / 2.0; }
     bool watchdogEnabled() const noexcept { return mWatchdogUsec > 0; }
 
 private:
+    void pace(Due& due, double now) noexcept;
+
     std::uint64_t mWatchdogUsec;
     bool mReadySent = false;
     double mLastPing = -1e300;

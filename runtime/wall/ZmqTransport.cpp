@@ -1,5 +1,6 @@
 #include "runtime/wall/ZmqTransport.h"
 
+#include <cerrno>
 #include <zmq.hpp>
 
 namespace kiosk::wall {
@@ -9,9 +10,16 @@ std::optional<Bytes> receiveOne(zmq::socket_t& s, std::chrono::microseconds time
     zmq::pollitem_t item{s.handle(), 0, ZMQ_POLLIN, 0};
     // zmq::poll takes milliseconds; sub-millisecond waits spin on a zero timeout instead.
     const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(timeout);
-    if (zmq::poll(&item, 1, ms) <= 0) return std::nullopt;
     zmq::message_t msg;
-    if (!s.recv(msg, zmq::recv_flags::dontwait)) return std::nullopt;
+    try {
+        if (zmq::poll(&item, 1, ms) <= 0) return std::nullopt;
+        if (!s.recv(msg, zmq::recv_flags::dontwait)) return std::nullopt;
+    } catch (const zmq::error_t& e) {
+        // A signal (SIGTERM, SIGINT) interrupted the wait: nothing received; the frame loop
+        // sees the stop request and exits cleanly.
+        if (e.num() == EINTR) return std::nullopt;
+        throw;
+    }
     const auto* p = static_cast<const std::uint8_t*>(msg.data());
     return Bytes(p, p + msg.size());
 }

@@ -63,6 +63,11 @@ public:
         kill(SIGKILL);
         return -1;
     }
+    /** Send `sig`; the exit status, or -1 if it did not end within 10 s (then it is killed). */
+    int signalAndWait(int sig) {
+        if (mPid > 0) ::kill(mPid, sig);
+        return wait(std::chrono::seconds(10));
+    }
     /** Send `sig` and reap (SIGKILL after 5 s if it does not end). */
     void kill(int sig) {
         if (mPid <= 0) return;
@@ -319,6 +324,23 @@ TEST_F(WallProcessTest, KilledFollowerIsDroppedAndRejoins) {
 // wall file names, inside its box, and never across a bezel. A 2x1 wall of 320x180 screens with a
 // 10 mm mullion; the same screens rendered without overlays are the reference, so every pixel
 // that differs belongs to an overlay panel.
+// A follower whose leader never comes keeps waiting; SIGTERM during that wait (a signal
+// interrupts ZeroMQ's poll) is a clean stop, not an internal error.
+TEST_F(WallProcessTest, LeaderlessFollowerStopsCleanlyOnSigterm) {
+    const fs::path wall = writeWall(100);
+    Proc follower;
+    follower.start(play(wall, "tr", {}), mDir / "tr.log");
+    const auto until = Clock::now() + std::chrono::seconds(30);
+    while (slurp(mDir / "tr.log").find("(follower)") == std::string::npos && Clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ASSERT_NE(slurp(mDir / "tr.log").find("(follower)"), std::string::npos)
+        << slurp(mDir / "tr.log");
+    std::this_thread::sleep_for(std::chrono::seconds(1));  // inside its wait for the leader
+    EXPECT_EQ(follower.signalAndWait(SIGTERM), 0) << slurp(mDir / "tr.log");
+    EXPECT_EQ(slurp(mDir / "tr.log").find("internal error"), std::string::npos)
+        << slurp(mDir / "tr.log");
+}
+
 TEST_F(WallProcessTest, OverlaysStayOnTheirScreens) {
     // Positions the canvas anchors must override (legend keeps its own: it is placed by screen).
     std::ofstream(mDir / "overlays.json") << nlohmann::json{

@@ -40,6 +40,18 @@ TEST(HealthTest, StalledFramesAre503WithTheReason) {
     EXPECT_EQ(body["reason"], "no frame for 6.5 s (limit 5.0 s)");
 }
 
+TEST(HealthTest, AHoldingLoopNamesItsCauseWhenStalled) {
+    ServiceSnapshot s;
+    s.lastFrameAt = 1.0;
+    s.holding = "no frame state from the wall leader";
+    EXPECT_EQ(evaluateHealth(s, 3.0, 5.0).status, 200);  // within the limit: nothing to report
+    const HealthVerdict v = evaluateHealth(s, 7.5, 5.0);
+    EXPECT_EQ(v.status, 503);
+    EXPECT_EQ(nlohmann::json::parse(v.body)["reason"],
+              "no frame state from the wall leader: no frame for 6.5 s (limit 5.0 s), last frame "
+              "kept");
+}
+
 TEST(HealthTest, SnapshotBoxHandsOverACopy) {
     SnapshotBox box;
     ServiceSnapshot s;

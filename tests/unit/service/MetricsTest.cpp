@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace kiosk::service {
 namespace {
@@ -54,13 +56,14 @@ TEST(MetricsTest, SnapshotRendersEveryFamilyOnce) {
     s.layers = {{"flood", "degraded", "2 tiles unreadable"}};
     s.cache.gpuMeshes = 1234;
     s.playlistIndex = 2;
-    const std::string text = renderMetrics(s, {4096, 12.5});
+    const std::string text = renderMetrics(s, {4096, 8192, 12.5});
     for (const char* family :
          {"geokiosk_frame_time_ms", "geokiosk_frames_total", "geokiosk_held_frames_total",
           "geokiosk_sequence_missing_frames_total", "geokiosk_cache_bytes",
           "geokiosk_loader_queue_depth", "geokiosk_layer_state", "geokiosk_reloads_total",
           "geokiosk_reload_failures_total", "geokiosk_playlist_position",
-          "geokiosk_resident_memory_bytes", "geokiosk_uptime_seconds"}) {
+          "geokiosk_resident_memory_bytes", "geokiosk_heap_in_use_bytes",
+          "geokiosk_uptime_seconds"}) {
         const std::string type = std::string("# TYPE ") + family + " ";
         const auto first = text.find(type);
         EXPECT_NE(first, std::string::npos) << family;
@@ -74,10 +77,19 @@ TEST(MetricsTest, SnapshotRendersEveryFamilyOnce) {
               std::string::npos);
     EXPECT_NE(text.find("geokiosk_playlist_position 2\n"), std::string::npos);
     EXPECT_NE(text.find("geokiosk_resident_memory_bytes 4096\n"), std::string::npos);
+    EXPECT_NE(text.find("geokiosk_heap_in_use_bytes 8192\n"), std::string::npos);
 }
 
 TEST(MetricsTest, RssIsReadFromProc) {
     EXPECT_GT(readRssBytes(), 1u << 20);
+}
+
+TEST(MetricsTest, HeapInUseFollowsMallocAndFree) {
+    const std::uint64_t before = readHeapInUseBytes();
+    std::vector<char> block(std::size_t(8) << 20, 1);  // 8 MiB: counted while held
+    EXPECT_GE(readHeapInUseBytes(), before + (std::uint64_t(8) << 20));
+    block = std::vector<char>();
+    EXPECT_LT(readHeapInUseBytes(), before + (std::uint64_t(1) << 20));
 }
 
 }  // namespace

@@ -22,6 +22,17 @@ TEST(WatchdogTest, PingsAtHalfTheIntervalOnlyWhenFramesComplete) {
     EXPECT_TRUE(p.frameCompleted(41.0).watchdog);
 }
 
+TEST(WatchdogTest, HoldingKeepsPingingButNeverSendsReady) {
+    WatchdogPacer p(2'000'000);
+    const WatchdogPacer::Due first = p.holding(10.0);  // a follower before its first frame
+    EXPECT_FALSE(first.ready);
+    EXPECT_TRUE(first.watchdog);
+    EXPECT_FALSE(p.holding(10.5).watchdog);
+    EXPECT_TRUE(p.holding(11.0).watchdog);
+    EXPECT_TRUE(p.frameCompleted(11.2).ready);  // READY still waits for a real frame
+    EXPECT_FALSE(p.holding(11.4).ready);
+}
+
 TEST(WatchdogTest, StatusAtMostOncePerSecond) {
     WatchdogPacer p(0);
     EXPECT_TRUE(p.frameCompleted(0.0).status);

@@ -1,0 +1,79 @@
+// A kiosk re-opens its scenario for weeks (hot reload, playlist steps, store swaps): opening,
+// drawing and closing a session must leave nothing behind (issue 15's soak goal). RSS is read
+// with no session alive, so what it gains after the first cycles is kept across sessions.
+#include "runtime/app/Session.h"
+#include "runtime/service/ServiceState.h"
+#include "tests/support/EglTestContext.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <malloc.h>
+#include <thread>
+#include <vector>
+
+namespace kiosk::app {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr int kW = 64, kH = 36;
+
+class SessionReopen : public test::EglTest {
+protected:
+    void SetUp() override {
+        test::EglTest::SetUp();
+        if (IsSkipped() || HasFatalFailure()) return;
+        if (!fs::exists("data/generated/rainier.gpkg"))
+            KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_DATA",
+                               "demo store missing: run tools/prepare-demo.sh");
+    }
+    /** Open the demo, play `frames` frames of its tour (tiles load and are evicted), close. */
+    void cycle(gl::RenderTarget& rt, int frames) {
+        auto s = Session::open("scenarios/demo/rainier.json", mCaps);
+        ASSERT_TRUE(s.ok()) << s.diagnostics.format();
+        Session& session = **s;
+        for (int i = 0; i < frames; ++i) {
+            const double t = session.startTime() + 600.0 * i;
+            auto vp = session.viewpointAt(t, "");
+            ASSERT_TRUE(vp.ok());
+            rt.bind();
+            session.drawFrame(makeCamera(*vp, session.terrain().bounds(), kW, kH, 45), t, kW, kH);
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        }
+    }
+};
+
+TEST_F(SessionReopen, ReopeningLeavesNothingBehind) {
+    auto rt = gl::RenderTarget::create(kW, kH);
+    ASSERT_TRUE(rt.ok());
+    std::vector<double> rssMb;
+    const int cycles =
+        std::getenv("KIOSK_TEST_CYCLES") ? std::atoi(std::getenv("KIOSK_TEST_CYCLES")) : 12;
+    ASSERT_GE(cycles, 8);
+    for (int c = 0; c < cycles; ++c) {
+        cycle(*rt, 40);
+        if (HasFatalFailure()) return;
+        glFinish();      // llvmpipe frees deleted textures and buffers once their commands ran
+        malloc_trim(0);  // as the kiosk does after a swap (KioskHooks::frameDone)
+        rssMb.push_back(double(service::readRssBytes()) / (1 << 20));
+        std::printf("cycle %d: RSS %.2f MB, heap in use %.2f MB\n", c, rssMb.back(),
+                    double(service::readHeapInUseBytes()) / (1 << 20));
+    }
+    // The first cycles fill one-time state (GDAL/SQLite/Mesa registries, shader variants).
+    // llvmpipe's scene bins make single readings jump by a few MB for a cycle, so the lowest
+    // of the last three readings is compared with the lowest of cycles 2-4: a leak raises
+    // both. The noise (single readings move by 2-4 MB) limits this to leaks of roughly 0.6 MB
+    // per re-open and more (a 1 MB block leaked per cycle measured +4.98 MB > 3); the soak
+    // benchmark (bench/kiosk) measures the small rates. valgrind (memcheck) finds the same lost and
+    // reachable bytes after 2 and 6 cycles.
+    const double early = *std::min_element(rssMb.begin() + 2, rssMb.begin() + 5);
+    const double late = *std::min_element(rssMb.end() - 3, rssMb.end());
+    EXPECT_LT(late - early, 3.0) << "RSS kept across " << cycles - 4 << " session re-opens";
+}
+
+}  // namespace
+}  // namespace kiosk::app
