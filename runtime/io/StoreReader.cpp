@@ -86,6 +86,10 @@ Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
         d.add(mDb.error("STORE_OPEN", "", "cannot read the file as SQLite"));
         return d;
     }
+    // A small page cache: tiles are blobs read once each (their pages would only duplicate
+    // what the tile cache holds decoded); the b-tree pages that lead to them fit in 256 KiB.
+    // SQLite's default is 2 MiB per connection (docs/performance.md).
+    d.append(mDb.exec("PRAGMA cache_size=-256"));
     if (*appId != kGpkgApplicationId || !mDb.tableExists(kGridTable) ||
         !mDb.tableExists(kLayersTable)) {
         d.error("STORE_NOT_GEOKIOSK", mInfo.path, "",

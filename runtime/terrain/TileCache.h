@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -86,11 +87,11 @@ public:
     }
     T* get(TileHandle h) {
         const std::uint32_t s = resolve(h);
-        return s == kNil ? nullptr : &*mSlots[s].payload;
+        return s == kNil ? nullptr : mSlots[s].payload.get();
     }
     const T* get(TileHandle h) const {
         const std::uint32_t s = resolve(h);
-        return s == kNil ? nullptr : &*mSlots[s].payload;
+        return s == kNil ? nullptr : mSlots[s].payload.get();
     }
     const TileKey* keyOf(TileHandle h) const {
         const std::uint32_t s = resolve(h);
@@ -115,7 +116,7 @@ public:
         const std::uint32_t s = mFree.back();
         mFree.pop_back();
         Slot& slot = mSlots[s];
-        slot.payload.emplace(std::move(payload));
+        slot.payload = std::make_unique<T>(std::move(payload));
         slot.key = key;
         slot.cpuBytes = cpuBytes;
         slot.gpuBytes = 0;
@@ -201,7 +202,10 @@ private:
     static constexpr std::uint32_t kGenerationMask = (1u << (32 - TileHandle::kIndexBits)) - 1u;
 
     struct Slot {
-        std::optional<T> payload;
+        // Held by pointer: the slot table is allocated (and touched) for every slot up front,
+        // and a payload (a tile mesh's cell tables alone are ~600 bytes) inline in each of 4096
+        // slots cost ~4 MB resident whether or not the slot is used (docs/performance.md).
+        std::unique_ptr<T> payload;
         TileKey key;
         std::size_t cpuBytes = 0;
         std::size_t gpuBytes = 0;
