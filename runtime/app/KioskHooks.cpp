@@ -217,6 +217,14 @@ Result<std::unique_ptr<Session>> KioskHooks::reopen(const gl::Caps& caps) {
     return mPlaylist ? mPlaylist->reopen(caps) : Session::open(mFile, caps);
 }
 
+Result<std::unique_ptr<Session>> KioskHooks::adopt(Result<std::unique_ptr<config::Scenario>> loaded,
+                                                   const gl::Caps& caps) {
+    if (!loaded) return loaded.diagnostics;
+    for (const auto& d : loaded.diagnostics.items()) KIOSK_LOG_WARN(kTag, "%s", d.format().c_str());
+    if (mPlaylist) return mPlaylist->create(std::move(*loaded.value), caps);
+    return Session::create(std::move(*loaded.value), caps);
+}
+
 std::filesystem::path KioskHooks::currentScenario() const {
     return mPlaylist ? mPlaylist->currentScenario() : mFile;
 }

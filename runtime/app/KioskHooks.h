@@ -48,6 +48,13 @@ public:
     /** @brief The scenario on screen opened again (hot reload, control, store swap), with the
      * kiosk file's budgets. */
     Result<std::unique_ptr<Session>> reopen(const gl::Caps& caps);
+    /**
+     * @brief The scenario on screen from a reload play's worker finished (ScenarioReloader):
+     * its diagnostics if it was refused, else the GL half built here with the kiosk file's
+     * budgets (warnings logged).
+     */
+    Result<std::unique_ptr<Session>> adopt(Result<std::unique_ptr<config::Scenario>> loaded,
+                                           const gl::Caps& caps);
     /** @brief Scenario file on screen (the one hot reload watches). */
     std::filesystem::path currentScenario() const;
     /** @brief Fade curtain for this frame (0 without a playlist fade). */

@@ -74,6 +74,12 @@ Result<std::unique_ptr<Session>> KioskPlaylist::reopen(const gl::Caps& caps) con
     return Session::open(currentScenario(), caps, [this](config::Scenario& s) { applyBudgets(s); });
 }
 
+Result<std::unique_ptr<Session>> KioskPlaylist::create(std::unique_ptr<config::Scenario> scenario,
+                                                       const gl::Caps& caps) const {
+    return Session::create(std::move(scenario), caps,
+                           [this](config::Scenario& s) { applyBudgets(s); });
+}
+
 bool KioskPlaylist::finished(const anim::ScenarioClock& clock) const {
     service::EntryProgress p;
     p.wallSeconds = service::monotonicSeconds() - mEntryStart;

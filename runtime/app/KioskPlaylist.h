@@ -34,6 +34,10 @@ public:
     std::unique_ptr<Session> open(int step, const gl::Caps& caps, Diagnostics& errors);
     /** @brief The entry on screen opened again (its store was replaced); keeps its timing. */
     Result<std::unique_ptr<Session>> reopen(const gl::Caps& caps) const;
+    /** @brief The entry on screen from a scenario already read and checked (play's reload
+     *  worker): only the GL half, with the kiosk file's budgets. */
+    Result<std::unique_ptr<Session>> create(std::unique_ptr<config::Scenario> scenario,
+                                            const gl::Caps& caps) const;
     /** @brief The entry on screen has had its time, loops or window. */
     bool finished(const anim::ScenarioClock& clock) const;
     /** @brief Black-curtain opacity of the fade transition now (0 with "cut"). */

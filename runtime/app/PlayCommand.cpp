@@ -7,6 +7,7 @@
 #include "runtime/app/BriefingControl.h"
 #include "runtime/app/KioskHooks.h"
 #include "runtime/app/Report.h"
+#include "runtime/app/ScenarioReloader.h"
 #include "runtime/app/Session.h"
 #include "runtime/app/Signals.h"
 #include "runtime/app/WallNode.h"
@@ -79,17 +80,6 @@ int usage(const std::string& message) {
 
 /** `--stats` without `--frames` keeps the newest this many frames (5 min at 60 fps, ~2 MB). */
 constexpr std::size_t kStatsWindow = 18000;
-
-/** Modification stamps of the scenario and everything it includes (into `out`, reused: the
- * poll runs in the frame loop, which must not allocate once running). */
-void stamps(const std::vector<std::filesystem::path>& files,
-            std::vector<std::filesystem::file_time_type>& out) {
-    out.resize(files.size());
-    for (std::size_t i = 0; i < files.size(); ++i) {
-        std::error_code ec;
-        out[i] = std::filesystem::last_write_time(files[i], ec);
-    }
-}
 
 /** A briefing plays its chapters instead of the clock (and starts on its first chapter). */
 std::optional<anim::BriefingPlayer> makeBriefing(Session& s) {
@@ -242,12 +232,13 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         stats.emplace(frameLimit > 0 ? std::size_t(frameLimit) : 0);
         if (frameLimit <= 0) stats->keepNewest(kStatsWindow);
     }
-    auto watched = session->scenario().sourceFiles;
-    std::vector<std::filesystem::file_time_type> watchedStamps, current;
-    stamps(watched, watchedStamps);
+    // Edits are polled, read and checked on the reloader's worker (which also keeps the stat
+    // calls out of this loop); the loop only swaps in a finished, valid scenario and builds its
+    // GL half, so a slow or hostile edit never stops the frames.
+    ScenarioReloader reloader(scenarioPath, session->scenario().sourceFiles, kReloadPollSeconds);
     KIOSK_LOG_INFO(kTag, "%s: playing, watching %zu files for edits", scenarioPath.c_str(),
-                   watched.size());
-    double lastPoll = wall.now(), last = wall.now();
+                   session->scenario().sourceFiles.size());
+    double last = wall.now();
     platform::InputState input;
     std::optional<math::Viewpoint> manual;  // set while the user steers the camera
     for (long frame = 0; frameLimit < 0 || frame < frameLimit; ++frame) {
@@ -255,9 +246,9 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         dpy.pollInput(input);
         if (input.quitRequested) break;
         kiosk->stallWhileTestFileExists();
-        // Remote control (pause/play/seek/rate act on the clock; reload re-opens at the poll).
+        // Remote control (pause/play/seek/rate act on the clock; reload: the worker re-reads).
         const KioskHooks::Requests control = kiosk->applyControl(clock);
-        if (control.reload) watchedStamps.clear();
+        if (control.reload) reloader.requestLoad();
         // A remote pause/play/seek/rate means the operator drives the clock: the briefing's
         // chapters would otherwise keep choosing the time and the command would have no effect.
         if (control.clock) briefing.reset();
@@ -271,8 +262,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
             governor = makeGovernor(*session, targetFps);
             if (kiosk->keepsDataTime()) clock.seek(was);
             scenarioPath = kiosk->currentScenario();
-            watched = session->scenario().sourceFiles;
-            stamps(watched, watchedStamps);
+            reloader.watch(scenarioPath, session->scenario().sourceFiles);
             manual.reset();
         }
         session->setCurtain(kiosk->curtain());
@@ -280,30 +270,23 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         const double dt = now - last;
         last = now;
 
-        if (now - lastPoll >= kReloadPollSeconds) {
-            lastPoll = now;
-            stamps(watched, current);
-            if (current != watchedStamps) {
-                watchedStamps = current;
-                auto next = kiosk->reopen(*caps);  // same file, with the kiosk's budgets
-                if (next) {
-                    session = std::move(*next.value);
-                    clock = makeClock(*session);
-                    briefing = makeBriefing(*session);
-                    governor = makeGovernor(*session, targetFps);
-                    watched = session->scenario().sourceFiles;
-                    stamps(watched, watchedStamps);
-                    KIOSK_LOG_INFO(kTag, "%s: reloaded", scenarioPath.c_str());
-                    kiosk->noteReload(true);
-                } else {
-                    // Keep the last good scenario on screen; say exactly why the edit was refused.
-                    for (const auto& d : next.diagnostics.items())
-                        KIOSK_LOG_ERROR(kTag, "edit rejected, keeping the previous scenario: %s",
-                                        d.format().c_str());
-                    kiosk->noteReload(false);
-                    if (const Diagnostic* e = next.diagnostics.firstError())
-                        session->setNotice("scenario edit rejected: " + e->format());
-                }
+        if (auto loaded = reloader.take()) {
+            auto next = kiosk->adopt(std::move(*loaded), *caps);  // with the kiosk's budgets
+            if (next) {
+                session = std::move(*next.value);
+                clock = makeClock(*session);
+                briefing = makeBriefing(*session);
+                governor = makeGovernor(*session, targetFps);
+                KIOSK_LOG_INFO(kTag, "%s: reloaded", scenarioPath.c_str());
+                kiosk->noteReload(true);
+            } else {
+                // Keep the last good scenario on screen; say exactly why the edit was refused.
+                for (const auto& d : next.diagnostics.items())
+                    KIOSK_LOG_ERROR(kTag, "edit rejected, keeping the previous scenario: %s",
+                                    d.format().c_str());
+                kiosk->noteReload(false);
+                if (const Diagnostic* e = next.diagnostics.firstError())
+                    session->setNotice("scenario edit rejected: " + e->format());
             }
         }
 

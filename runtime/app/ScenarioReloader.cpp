@@ -7,11 +7,18 @@
 
 namespace kiosk::app {
 
+ScenarioReloader::Target ScenarioReloader::targetOf(std::filesystem::path path,
+                                                    std::vector<std::filesystem::path> files) {
+    if (std::find(files.begin(), files.end(), path) == files.end())
+        files.insert(files.begin(), path);
+    Target t{std::move(path), std::move(files), {}};
+    t.stamps = stampsOf(t.files);
+    return t;
+}
+
 ScenarioReloader::ScenarioReloader(std::filesystem::path scenarioPath,
                                    std::vector<std::filesystem::path> files, double pollSeconds)
-    : mPath(std::move(scenarioPath)), mPollSeconds(pollSeconds), mFiles(std::move(files)) {
-    if (mFiles.empty()) mFiles.push_back(mPath);
-    mStamps = stampsOf(mFiles);
+    : mPollSeconds(pollSeconds), mTarget(targetOf(std::move(scenarioPath), std::move(files))) {
     mThread = std::thread([this] { run(); });
 }
 
@@ -23,6 +30,28 @@ ScenarioReloader::~ScenarioReloader() {
     mWake.notify_all();
     // A load in progress finishes first (the reader is bounded by config/Limits.h).
     mThread.join();
+}
+
+void ScenarioReloader::watch(std::filesystem::path scenarioPath,
+                             std::vector<std::filesystem::path> files) {
+    // Stamps now, on the caller's thread: the session it just opened read these versions.
+    Target next = targetOf(std::move(scenarioPath), std::move(files));
+    {
+        std::lock_guard lock(mMutex);
+        mNextTarget = std::move(next);
+        ++mGeneration;
+        mFinished.reset();
+        mForce = false;
+    }
+    mWake.notify_all();
+}
+
+void ScenarioReloader::requestLoad() {
+    {
+        std::lock_guard lock(mMutex);
+        mForce = true;
+    }
+    mWake.notify_all();
 }
 
 std::optional<ScenarioReloader::Loaded> ScenarioReloader::take() {
@@ -46,39 +75,46 @@ ScenarioReloader::Stamps ScenarioReloader::stampsOf(
 
 void ScenarioReloader::run() {
     for (;;) {
+        bool force = false;
+        std::uint64_t generation = 0;
         {
             std::unique_lock lock(mMutex);
             mWake.wait_for(lock, std::chrono::duration<double>(mPollSeconds),
-                           [this] { return mStop; });
+                           [this] { return mStop || mForce || mNextTarget; });
             if (mStop) return;
+            if (mNextTarget) {
+                mTarget = std::move(*mNextTarget);
+                mNextTarget.reset();
+            }
+            force = mForce;
+            mForce = false;
+            generation = mGeneration;
         }
         // Stamps are taken before loading: an edit saved while a (slow) load runs is seen at
         // the next poll instead of being taken for part of what was loaded.
-        Stamps before = stampsOf(mFiles);
-        if (before == mStamps) continue;
+        Stamps before = stampsOf(mTarget.files);
+        if (!force && before == mTarget.stamps) continue;
         ++mLoads;
-        Loaded loaded = Session::readChecked(mPath);
+        Loaded loaded = Session::readChecked(mTarget.path);
         // Watch what this load read; files new to the list count as unseen (stamp min), so an
-        // edit to them during the load triggers one more load rather than being lost.
-        std::vector<std::filesystem::path> files;
-        if (loaded) {
-            files = (*loaded.value)->sourceFiles;
-        } else {
-            // A broken edit: keep watching what was read, so fixing it is noticed.
-            files = mFiles;
-        }
-        if (std::find(files.begin(), files.end(), mPath) == files.end())
-            files.insert(files.begin(), mPath);
+        // edit to them during the load triggers one more load rather than being lost. A broken
+        // edit keeps the old list, so fixing it is noticed.
+        std::vector<std::filesystem::path> files =
+            loaded ? (*loaded.value)->sourceFiles : mTarget.files;
+        if (std::find(files.begin(), files.end(), mTarget.path) == files.end())
+            files.insert(files.begin(), mTarget.path);
         Stamps stamps;
         for (const auto& f : files) {
-            auto it = std::find(mFiles.begin(), mFiles.end(), f);
-            stamps.push_back(it != mFiles.end() ? before[std::size_t(it - mFiles.begin())]
-                                                : std::filesystem::file_time_type::min());
+            auto it = std::find(mTarget.files.begin(), mTarget.files.end(), f);
+            stamps.push_back(it != mTarget.files.end()
+                                 ? before[std::size_t(it - mTarget.files.begin())]
+                                 : std::filesystem::file_time_type::min());
         }
-        mFiles = std::move(files);
-        mStamps = std::move(stamps);
+        mTarget.files = std::move(files);
+        mTarget.stamps = std::move(stamps);
         std::lock_guard lock(mMutex);
-        mFinished = std::move(loaded);
+        // play switched to another scenario meanwhile: this result is not for the screen.
+        if (generation == mGeneration) mFinished = std::move(loaded);
     }
 }
 

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -32,6 +33,15 @@ public:
     ScenarioReloader(const ScenarioReloader&) = delete;
     ScenarioReloader& operator=(const ScenarioReloader&) = delete;
 
+    /**
+     * @brief From now on watch another scenario (play switched session: playlist entry, store
+     * swap), its files as they are now. A load of the previous one still running is dropped when
+     * it finishes; an untaken result is dropped now. Never waits for the worker.
+     */
+    void watch(std::filesystem::path scenarioPath, std::vector<std::filesystem::path> files);
+    /** @brief Load the watched scenario at the next chance even if no file changed (control). */
+    void requestLoad();
+
     /** @brief A load finished since the last call (valid or not); never blocks. Frame loop. */
     std::optional<Loaded> take();
 
@@ -43,15 +53,23 @@ private:
     static Stamps stampsOf(const std::vector<std::filesystem::path>& files);
     void run();
 
-    const std::filesystem::path mPath;
+    struct Target {
+        std::filesystem::path path;
+        std::vector<std::filesystem::path> files;
+        Stamps stamps;
+    };
+    static Target targetOf(std::filesystem::path path, std::vector<std::filesystem::path> files);
+
     const double mPollSeconds;
-    std::vector<std::filesystem::path> mFiles;  // worker only
-    Stamps mStamps;                             // worker only
+    Target mTarget;  // worker only (set before the worker starts, then from mNextTarget)
 
     std::mutex mMutex;
     std::condition_variable mWake;
-    bool mStop = false;               // guarded by mMutex
-    std::optional<Loaded> mFinished;  // guarded by mMutex; a newer result replaces an untaken one
+    bool mStop = false;                 // guarded by mMutex
+    bool mForce = false;                // guarded by mMutex
+    std::optional<Target> mNextTarget;  // guarded by mMutex; watch() hands it to the worker
+    std::uint64_t mGeneration = 0;      // guarded by mMutex; results of older ones are dropped
+    std::optional<Loaded> mFinished;    // guarded by mMutex; a newer result replaces an untaken one
     std::atomic<int> mLoads{0};
     std::thread mThread;
 };

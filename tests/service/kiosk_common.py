@@ -131,3 +131,13 @@ class Checks:
 
 def temp_dir():
     return tempfile.TemporaryDirectory(prefix="geokiosk-svc-")
+
+
+def wait_until(pred, seconds, step=0.05):
+    """True once pred() holds, polled every `step` seconds; False after `seconds`."""
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        if pred():
+            return True
+        time.sleep(step)
+    return False
