@@ -58,6 +58,13 @@ std::vector<std::filesystem::path> allowedRoots(const std::filesystem::path& roo
     const auto cwd = std::filesystem::current_path(ec);
     // A service started in `/` would otherwise allow every file on the machine.
     if (!ec && canonicalOf(cwd) != canonicalOf("/")) addUnique(roots, cwd);
+    // The package's own read-only data (the shipped demo names ../../data from its scenario
+    // folder): <prefix>/share/geokiosk beside <prefix>/bin/geokiosk, when installed.
+    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        const auto shared = exe.parent_path().parent_path() / "share" / "geokiosk";
+        if (std::filesystem::is_directory(shared, ec)) addUnique(roots, shared);
+    }
     if (const char* env = std::getenv("GEOKIOSK_ALLOW_PATHS")) {
         std::string list(env);
         std::size_t start = 0;

@@ -5,6 +5,7 @@
 #include "runtime/io/ScalarTileCodec.h"
 #include "runtime/io/SqliteDb.h"
 #include "runtime/io/StoreTables.h"
+#include "runtime/io/StoreWriter.h"
 
 #include <cmath>
 #include <map>
@@ -106,9 +107,11 @@ private:
             t.scalar = *kind != LayerKind::Imagery;
             t.levels = int(ls->columnInt(2));
             t.tileCount = ls->columnInt(3);
-            if (t.levels < 1 || t.levels > mLevels)
+            // Imagery may keep its own, finer resolution below the grid (issue 16).
+            const int maxLevels = mLevels + (t.scalar ? 0 : StoreWriter::kMaxExtraImageryLevels);
+            if (t.levels < 1 || t.levels > maxLevels)
                 error(t.name, "kiosk_layers.levels " + std::to_string(t.levels) + " outside 1.." +
-                                  std::to_string(mLevels));
+                                  std::to_string(maxLevels));
             mTables.push_back(std::move(t));
         }
     }
