@@ -142,6 +142,10 @@ std::optional<TimeSpec> parseTimeSpec(std::string_view text) {
 }
 
 std::string formatIso8601(double epochSeconds) {
+    // Years 0000..9999 only: a hostile number (3e50 in a times CSV) must not reach the time_t
+    // conversion, which is undefined past its range.
+    if (!(epochSeconds >= -62167219200.0 && epochSeconds < 253402300800.0))
+        return "(time out of range)";
     const auto t = static_cast<std::time_t>(std::floor(epochSeconds));
     std::tm tm{};
     gmtime_r(&t, &tm);

@@ -37,7 +37,8 @@ std::optional<double> parseIso8601(std::string_view text);
 std::optional<double> parseOffset(std::string_view text);
 /** @brief Either form. */
 std::optional<TimeSpec> parseTimeSpec(std::string_view text);
-/** @brief Epoch seconds -> `2026-03-14T06:40:00Z` (whole seconds, UTC). */
+/** @brief Epoch seconds -> `2026-03-14T06:40:00Z` (whole seconds, UTC); outside years 0..9999 or
+ *  NaN: `(time out of range)`. */
 std::string formatIso8601(double epochSeconds);
 
 }  // namespace kiosk

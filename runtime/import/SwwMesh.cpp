@@ -2,10 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <memory>
 #include <netcdf.h>
+#include <string>
+#include <vector>
 
 namespace kiosk::import {
 
@@ -23,11 +27,110 @@ double attDouble(int nc, const char* name, double fallback) {
     return nc_get_att_double(nc, NC_GLOBAL, name, &v) == NC_NOERR ? v : fallback;
 }
 
+/**
+ * libnetcdf allocates whatever a classic-format header claims (a 60-byte file asking for 926
+ * million dimensions makes nc_open calloc 7.4 GB: found by tests/fuzz/SwwFuzzer.cpp). Walk the
+ * header of a classic file (CDF1/CDF2/CDF5) and refuse it when a count or name length cannot fit
+ * in the bytes that follow; anything else (HDF5-based netCDF-4, a header cut short) is left to
+ * nc_open. False with `why` set when the header lies.
+ */
+bool classicHeaderFits(const std::string& path, std::string& why) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return true;
+    std::vector<unsigned char> h(1 << 20);  // counts are checked against the whole file below
+    const std::size_t got = std::fread(h.data(), 1, h.size(), f);
+    std::fseek(f, 0, SEEK_END);
+    const long fileSize = std::ftell(f);
+    std::fclose(f);
+    h.resize(got);
+    if (got < 8 || h[0] != 'C' || h[1] != 'D' || h[2] != 'F') return true;
+    const int version = h[3];
+    if (version != 1 && version != 2 && version != 5) return true;
+    const std::size_t countBytes = version == 5 ? 8 : 4;
+    std::size_t p = 4 + countBytes;  // magic, numrecs
+    const std::uint64_t total = fileSize > 0 ? std::uint64_t(fileSize) : got;
+    bool ok = true;
+    auto u = [&](std::size_t n, std::uint64_t& v) {
+        if (p + n > h.size()) return false;
+        v = 0;
+        for (std::size_t i = 0; i < n; ++i) v = (v << 8) | h[p + i];
+        p += n;
+        return true;
+    };
+    // Each element of a list takes at least `minBytes`; a count beyond the file is a lie.
+    auto count = [&](std::uint64_t& n, std::uint64_t minBytes, const char* what) {
+        std::uint64_t tag = 0;
+        if (!u(4, tag) || !u(countBytes, n)) return false;
+        if (n > (total - std::min<std::uint64_t>(total, p)) / minBytes) {
+            why = std::string("header claims ") + std::to_string(n) + " " + what;
+            ok = false;
+            return false;
+        }
+        return true;
+    };
+    auto name = [&]() {
+        std::uint64_t len = 0;
+        if (!u(countBytes, len)) return false;
+        if (len > total - std::min<std::uint64_t>(total, p)) {
+            why = "header claims a name of " + std::to_string(len) + " bytes";
+            ok = false;
+            return false;
+        }
+        p += (len + 3) / 4 * 4;
+        return p <= h.size();
+    };
+    auto attributes = [&]() {
+        std::uint64_t n = 0;
+        if (!count(n, 12, "attributes")) return false;
+        for (std::uint64_t i = 0; i < n; ++i) {
+            std::uint64_t type = 0, len = 0;
+            if (!name() || !u(4, type) || !u(countBytes, len)) return false;
+            static const std::uint64_t kSize[] = {0, 1, 1, 2, 4, 4, 8, 1, 2, 4, 8, 8};
+            const std::uint64_t size = type < 12 ? kSize[type] : 0;
+            if (size == 0) return false;  // nc_open refuses it
+            if (len > (total - std::min<std::uint64_t>(total, p)) / size) {
+                why = "header claims an attribute of " + std::to_string(len) + " values";
+                ok = false;
+                return false;
+            }
+            p += (len * size + 3) / 4 * 4;
+        }
+        return p <= h.size();
+    };
+    std::uint64_t dims = 0;
+    if (!count(dims, 8, "dimensions")) return ok;
+    for (std::uint64_t i = 0; i < dims; ++i) {
+        std::uint64_t len = 0;
+        if (!name() || !u(countBytes, len)) return ok;
+    }
+    if (!attributes()) return ok;
+    std::uint64_t vars = 0;
+    if (!count(vars, 16, "variables")) return ok;
+    for (std::uint64_t i = 0; i < vars; ++i) {
+        std::uint64_t ndims = 0, type = 0, vsize = 0, begin = 0;
+        if (!name() || !u(countBytes, ndims)) return ok;
+        if (ndims > (total - std::min<std::uint64_t>(total, p)) / 4) {
+            why = "header claims a variable of " + std::to_string(ndims) + " dimensions";
+            return false;
+        }
+        p += std::size_t(ndims) * countBytes;
+        if (!attributes() || !u(4, type) || !u(countBytes, vsize) ||
+            !u(version == 1 ? 4 : 8, begin))
+            return ok;
+    }
+    return ok;
+}
+
 }  // namespace
 
 Result<SwwMesh> SwwMesh::open(const std::string& path) {
     Diagnostics d;
     NcFile nc;
+    if (std::string why; !classicHeaderFits(path, why)) {
+        d.error("IMPORT_UNREADABLE", path, "",
+                "cannot read SWW: " + why + " (larger than the file)");
+        return d;
+    }
     int rc = nc_open(path.c_str(), NC_NOWRITE, &nc.id);
     if (rc != NC_NOERR) {
         nc.id = -1;
