@@ -52,7 +52,7 @@ TEST_F(SessionReopen, ReopeningLeavesNothingBehind) {
     ASSERT_TRUE(rt.ok());
     std::vector<double> rssMb;
     const int cycles =
-        std::getenv("KIOSK_TEST_CYCLES") ? std::atoi(std::getenv("KIOSK_TEST_CYCLES")) : 12;
+        std::getenv("KIOSK_TEST_CYCLES") ? std::atoi(std::getenv("KIOSK_TEST_CYCLES")) : 16;
     ASSERT_GE(cycles, 8);
     for (int c = 0; c < cycles; ++c) {
         cycle(*rt, 40);
@@ -63,16 +63,22 @@ TEST_F(SessionReopen, ReopeningLeavesNothingBehind) {
         std::printf("cycle %d: RSS %.2f MB, heap in use %.2f MB\n", c, rssMb.back(),
                     double(service::readHeapInUseBytes()) / (1 << 20));
     }
-    // The first cycles fill one-time state (GDAL/SQLite/Mesa registries, shader variants).
-    // llvmpipe's scene bins make single readings jump by a few MB for a cycle, so the lowest
-    // of the last three readings is compared with the lowest of cycles 2-4: a leak raises
-    // both. The noise (single readings move by 2-4 MB) limits this to leaks of roughly 0.6 MB
-    // per re-open and more (a 1 MB block leaked per cycle measured +4.98 MB > 3); the soak
-    // benchmark (bench/kiosk) measures the small rates. valgrind (memcheck) finds the same lost and
-    // reachable bytes after 2 and 6 cycles.
-    const double early = *std::min_element(rssMb.begin() + 2, rssMb.begin() + 5);
-    const double late = *std::min_element(rssMb.end() - 3, rssMb.end());
-    EXPECT_LT(late - early, 3.0) << "RSS kept across " << cycles - 4 << " session re-opens";
+    // The first two cycles fill one-time state (GDAL/SQLite/Mesa registries, shader variants).
+    // After them single readings still jump by 1-4 MB for a cycle (llvmpipe's scene bins and
+    // freed texture storage it keeps), and under a loaded ctest -j2 the jumps cluster, so the
+    // growth is the Theil-Sen slope (median of all pairwise slopes) over the later cycles: a
+    // leak raises every later reading, a jump moves only the pairs through it. A 1 MB block
+    // leaked per re-open measures 1.02 MB; clean runs two at a time measured 0.01-0.29.
+    // The soak benchmark (bench/kiosk) measures the small rates; valgrind (memcheck) finds the
+    // same lost and reachable bytes after 2 and 6 cycles.
+    std::vector<double> slopes;
+    for (int a = 2; a < cycles; ++a)
+        for (int b = a + 1; b < cycles; ++b) slopes.push_back((rssMb[b] - rssMb[a]) / (b - a));
+    std::nth_element(slopes.begin(), slopes.begin() + slopes.size() / 2, slopes.end());
+    const double slope = slopes[slopes.size() / 2];
+    std::printf("RSS growth: %.3f MB per re-open (Theil-Sen over cycles 2-%d)\n", slope,
+                cycles - 1);
+    EXPECT_LT(slope, 0.6) << "RSS grows by " << slope << " MB per session re-open";
 }
 
 }  // namespace
