@@ -26,6 +26,7 @@ JSON
 else
     echo '{"benchmark":"frame","scenario":"puget","skipped":"../shared/data not present"}'
 fi
+"$BUILD/bench/bench-meshes" data/generated/rainier.gpkg $([[ -f $BUILD/bench-data/puget.gpkg ]] && echo $BUILD/bench-data/puget.gpkg)  # stored compressed meshes vs meshing on load
 "$BUILD/bench/bench-detail"                 # procedural detail: off / warped grid / regular grid
 "$BUILD/bench/bench-mappings"               # Table 1 of Trapp & Doellner: 0/1/4/16/27/64 mappings
 "$BUILD/bench/bench-import"                 # 4k DEM vs gdal_translate + gdaladdo (--sizes 4096,16384)

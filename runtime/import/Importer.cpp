@@ -10,6 +10,7 @@
 #include "runtime/import/SourceUnits.h"
 #include "runtime/import/SwwMesh.h"
 #include "runtime/import/TempStore.h"
+#include "runtime/import/TileMeshes.h"
 #include "runtime/io/StoreWriter.h"
 
 #include <cpl_string.h>
@@ -189,6 +190,11 @@ Result<PyramidResult> importScalarLayer(io::StoreWriter& w, const PlacedSource& 
     windowExtent(*w.grid(), ps.window, x0, y0, x1, y1);
     d.append(w.finishLayer(si.table, res->minValue, res->maxValue, x0, y0, x1, y1));
     if (d.hasErrors()) return d;
+    if (si.kind == io::LayerKind::Elevation) {  // the loader decodes these instead of meshing
+        auto meshes = storeTileMeshes(w, si.table, scale, o.threads, progress);
+        if (!meshes) return meshes.diagnostics;
+        res.diagnostics.append(meshes.diagnostics);
+    }
     return res;
 }
 

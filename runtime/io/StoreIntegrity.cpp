@@ -2,6 +2,7 @@
 
 #include "runtime/io/ImageCodec.h"
 #include "runtime/io/ImageHeader.h"
+#include "runtime/io/MeshBlob.h"
 #include "runtime/io/ScalarTileCodec.h"
 #include "runtime/io/SqliteDb.h"
 #include "runtime/io/StoreTables.h"
@@ -47,6 +48,7 @@ public:
                       ? what
                       : what + " in " + std::to_string(tables.size()) + " tables (" + list + ")");
         }
+        meshes(level);
         if (level == IntegrityLevel::Deep)
             for (const auto& t : mTables) tiles(t);
         if (mTileProblems > kMaxReportedTileProblems)
@@ -222,6 +224,57 @@ private:
                       "WHERE s.table_name IS NULL",
                   t.name);
         if (noStats.value_or(0) > 0) problem(t, "tiles without a kiosk_tile_stats row");
+    }
+
+    // kiosk_tile_meshes (optional: stores imported before it mesh on load). Core: registered;
+    // Tables: every row belongs to a tile of an elevation layer; Deep: every blob decodes to a
+    // mesh on the grid's tiles.
+    void meshes(IntegrityLevel level) {
+        if (!mDb.tableExists(kTileMeshesTable)) return;
+        if (count("SELECT COUNT(*) FROM gpkg_extensions WHERE table_name = ?1 AND "
+                  "extension_name = ?1",
+                  kTileMeshesTable) != 1)
+            error(kTileMeshesTable, "table is not registered in gpkg_extensions");
+        if (level == IntegrityLevel::Core) return;
+        const auto foreign = count(
+            "SELECT COUNT(*) FROM kiosk_tile_meshes WHERE table_name NOT IN (SELECT table_name "
+            "FROM kiosk_layers WHERE kind = 'elevation')");
+        if (foreign.value_or(0) > 0)
+            error(kTileMeshesTable,
+                  std::to_string(*foreign) + " meshes of tables that are not elevation layers");
+        for (const auto& t : mTables) {
+            if (!t.scalar || !mDb.tableExists(t.name)) continue;
+            const auto orphans = count(
+                "SELECT COUNT(*) FROM kiosk_tile_meshes m WHERE m.table_name = ?1 AND NOT EXISTS "
+                "(SELECT 1 FROM " +
+                    quoteIdentifier(t.name) +
+                    " t WHERE t.zoom_level = "
+                    "m.zoom_level AND t.tile_column = m.tile_column AND t.tile_row = m.tile_row)",
+                t.name);
+            if (orphans.value_or(0) > 0)
+                error(std::string(kTileMeshesTable) + "/" + t.name,
+                      std::to_string(*orphans) + " meshes of tiles the table does not have");
+        }
+        if (level != IntegrityLevel::Deep) return;
+        auto st = mDb.prepare(
+            "SELECT table_name, zoom_level, tile_column, tile_row, tier, mesh FROM "
+            "kiosk_tile_meshes");
+        if (!st) return;
+        while (st->step() == SQLITE_ROW) {
+            const TileId id{int(st->columnInt(1)), int(st->columnInt(2)), int(st->columnInt(3))};
+            const std::string where =
+                tileName(st->columnText(0), id) + " tier " + std::to_string(st->columnInt(4));
+            const auto [data, size] = st->columnBlob(5);
+            auto m = decodeMeshBlob(data, size, where);
+            std::string problem;
+            if (!m)
+                problem = m.diagnostics.firstError()->message;
+            else if (m->postIntervals != mTileW || m->postIntervals != mTileH)
+                problem = "stored mesh is for " + std::to_string(m->postIntervals) +
+                          "-post tiles, the grid's are " + std::to_string(mTileW);
+            if (problem.empty() || ++mTileProblems > kMaxReportedTileProblems) continue;
+            error(where, problem, "STORE_MESH_CORRUPT");
+        }
     }
 
     void tiles(const TileTable& t) {

@@ -47,6 +47,12 @@ public:
         return mQueries.stats(layer, id);
     }
 
+    Result<bool> readTileMesh(const std::string& layer, const TileId& id, double tolerance,
+                              double baseTolerance, TileMeshRow& out) override {
+        if (!mHasMeshes) return false;
+        return mQueries.readMesh(layer, id, tolerance, baseTolerance, out);
+    }
+
 private:
     Diagnostics unknownLayer(const std::string& name, const char* what) const {
         Diagnostics d;
@@ -73,6 +79,7 @@ private:
     StoreInfo mInfo;
     std::map<std::string, TileQueries::ScalarMeta> mMeta;
     std::map<std::string, std::vector<std::string>> mFrameTables;
+    bool mHasMeshes = false;  // kiosk_tile_meshes exists (stores imported since issue 20)
 };
 
 Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
@@ -171,6 +178,7 @@ Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
                         "table is missing (scalar layers need it)");
                 return d;
             }
+    mHasMeshes = mDb.tableExists(kTileMeshesTable);
 
     if (mDb.tableExists(kSequencesTable)) {
         auto ss = mDb.prepare(

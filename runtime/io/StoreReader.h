@@ -1,11 +1,12 @@
 #pragma once
 
+#include "runtime/core/Result.h"
+#include "runtime/io/MeshBlob.h"
+#include "runtime/io/StoreTypes.h"
+
 #include <filesystem>
 #include <memory>
 #include <string>
-
-#include "runtime/core/Result.h"
-#include "runtime/io/StoreTypes.h"
 
 namespace kiosk::io {
 
@@ -35,6 +36,18 @@ public:
                                                  const TileId& id) = 0;
     /** @brief Min/max/error of a tile without decoding it; nullopt if the tile is absent. */
     virtual std::optional<TileStats> tileStats(const std::string& layer, const TileId& id) = 0;
+    /**
+     * @brief The mesh stored for an elevation tile at import (kiosk_tile_meshes), into `out`
+     * (its buffers reused): the one of `tolerance`, or the tier-0 one of `baseTolerance` with
+     * split tiers to derive it from (TileQueries::readMesh); false when there is neither (stores
+     * imported before meshes were stored, other tolerances): the caller meshes the posts.
+     * STORE_MESH_CORRUPT when the blob does not decode.
+     */
+    virtual Result<bool> readTileMesh(const std::string& layer, const TileId& id, double tolerance,
+                                      double baseTolerance, TileMeshRow& out) {
+        (void)layer, (void)id, (void)tolerance, (void)baseTolerance, (void)out;
+        return false;
+    }
 };
 
 }  // namespace kiosk::io

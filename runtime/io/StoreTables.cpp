@@ -193,6 +193,50 @@ Result<ImageTile> TileQueries::readImage(const std::string& table, const TileId&
     return t;
 }
 
+Result<bool> TileQueries::readMesh(const std::string& table, const TileId& id, double tolerance,
+                                   double baseTolerance, TileMeshRow& out) {
+    Diagnostics d;
+    if (!mMesh.valid()) {
+        // Tolerances are computed the same way at import and here: the slack only absorbs a
+        // different rounding of the same product. The exact tolerance first, then tier 0.
+        auto st = mDb->prepare(
+            "SELECT tier, tolerance, mesh FROM kiosk_tile_meshes WHERE table_name = ?1 AND "
+            "zoom_level = ?2 AND tile_column = ?3 AND tile_row = ?4 AND (abs(tolerance - ?5) <= "
+            "1e-12 * ?5 OR (tier = 0 AND split_tiers = 1 AND abs(tolerance - ?6) <= 1e-12 * ?6)) "
+            "ORDER BY "
+            "abs(tolerance - ?5) LIMIT 1");
+        if (!st) return st.diagnostics;
+        mMesh = std::move(*st);
+    }
+    mMesh.reset();
+    mMesh.bind(1, std::string_view(table));
+    mMesh.bindInt(2, id.level);
+    mMesh.bindInt(3, id.column);
+    mMesh.bindInt(4, id.row);
+    mMesh.bind(5, tolerance);
+    mMesh.bind(6, baseTolerance);
+    const int rc = mMesh.step();
+    if (rc == SQLITE_DONE) return false;
+    if (rc != SQLITE_ROW) {
+        d.add(mDb->error("STORE_MESH_CORRUPT", tileName(table, id), "cannot read stored mesh"));
+        return d;
+    }
+    out.tier = int(mMesh.columnInt(0));
+    out.tolerance = mMesh.columnDouble(1);
+    const auto [data, size] = mMesh.columnBlob(2);
+    Diagnostics m = decodeMeshBlob(
+        data, size, tileName(table, id) + " tier " + std::to_string(out.tier), out.mesh);
+    mMesh.reset();
+    if (m.hasErrors()) {
+        for (Diagnostic e : m.items()) {
+            e.file = mDb->path();
+            d.add(std::move(e));
+        }
+        return d;
+    }
+    return true;
+}
+
 std::optional<TileStats> TileQueries::stats(const std::string& table, const TileId& id) {
     if (!mStats.valid()) {
         auto st = mDb->prepare(

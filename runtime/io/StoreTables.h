@@ -1,6 +1,7 @@
 #pragma once
 
 #include "runtime/core/Result.h"
+#include "runtime/io/MeshBlob.h"
 #include "runtime/io/SqliteDb.h"
 #include "runtime/io/StoreTypes.h"
 
@@ -20,7 +21,11 @@ inline constexpr const char* kFramesTable = "kiosk_sequence_frames";
 inline constexpr const char* kStoreExtension = "kiosk_store";
 inline constexpr const char* kTileStatsExtension = "kiosk_tile_stats";
 inline constexpr const char* kSequencesExtension = "kiosk_sequences";
+inline constexpr const char* kTileMeshesTable = "kiosk_tile_meshes";
+inline constexpr const char* kTileMeshesExtension = "kiosk_tile_meshes";
 inline constexpr const char* kCoverageExtension = "gpkg_2d_gridded_coverage";
+/** @brief gpkg_extensions.definition of our extensions (plus "#extension_name"). */
+inline constexpr const char* kOurDefinition = "https://geokiosk.invalid/docs/store-format.md";
 inline constexpr std::int32_t kGpkgApplicationId = 0x47504B47;  // 'GPKG'
 inline constexpr int kGpkgUserVersion = 10300;
 
@@ -49,6 +54,14 @@ public:
                                   const TileId& id);
     /** @brief Decode an imagery tile to RGBA8. */
     Result<ImageTile> readImage(const std::string& table, const TileId& id);
+    /**
+     * @brief Into `out` (buffers reused): the stored mesh of a tile simplified with `tolerance`,
+     * or else its tier-0 mesh of `baseTolerance` when that carries split tiers (the caller
+     * derives the tier); false when there is neither (kiosk_tile_meshes). Only a row that is
+     * used gets decoded; one that does not decode is STORE_MESH_CORRUPT naming tile and tier.
+     */
+    Result<bool> readMesh(const std::string& table, const TileId& id, double tolerance,
+                          double baseTolerance, TileMeshRow& out);
     /** @brief Stats row, nullopt if absent. */
     std::optional<TileStats> stats(const std::string& table, const TileId& id);
 
@@ -58,7 +71,7 @@ private:
 
     SqliteDb* mDb;
     std::map<std::string, Statement> mScalar, mImage;
-    Statement mStats;
+    Statement mStats, mMesh;
 };
 
 /** @brief `table/level/column/row`, the `where` of tile diagnostics. */

@@ -90,8 +90,6 @@ INSERT OR IGNORE INTO gpkg_contents (table_name, data_type, identifier, descript
 
 constexpr const char* kCoverageDefinition =
     "http://docs.opengeospatial.org/is/17-066r1/17-066r1.html";
-constexpr const char* kOurDefinition = "https://geokiosk.invalid/docs/store-format.md";
-
 }  // namespace
 
 StoreWriter::~StoreWriter() {
@@ -379,8 +377,9 @@ Diagnostics StoreWriter::createImageryLayer(const std::string& table,
                                             const std::string& description, int extraLevels) {
     Diagnostics d;
     if (extraLevels < 0 || extraLevels > kMaxExtraImageryLevels) {
-        d.error("STORE_BAD_LEVELS", mDb.path(), table, "imagery may refine the grid by 0 to " +
-                    std::to_string(kMaxExtraImageryLevels) + " levels");
+        d.error("STORE_BAD_LEVELS", mDb.path(), table,
+                "imagery may refine the grid by 0 to " + std::to_string(kMaxExtraImageryLevels) +
+                    " levels");
         return d;
     }
     d = insertMatrices(table, "tiles", description, extraLevels);
@@ -580,6 +579,7 @@ Diagnostics StoreWriter::commit() {
     mInsertTile.clear();
     mInsertAncillary = Statement();
     mInsertStats = Statement();
+    mInsertMesh = Statement();
     mQueries.reset();
     d.append(mDb.exec("PRAGMA application_id = " + std::to_string(kGpkgApplicationId) +
                       "; PRAGMA user_version = " + std::to_string(kGpkgUserVersion) +

@@ -6,10 +6,10 @@
 #include "runtime/io/StoreTables.h"
 #include "runtime/io/StoreTypes.h"
 
+#include <array>
 #include <filesystem>
 #include <map>
 #include <memory>
-#include <array>
 #include <optional>
 #include <string>
 
@@ -89,6 +89,21 @@ public:
     Result<RasterTile> readScalarTile(const std::string& table, const TileId& id);
     Result<ImageTile> readImageTile(const std::string& table, const TileId& id);
 
+    /**
+     * @brief Create kiosk_tile_meshes (and register its extension) if the store has none yet;
+     * StoreWriterMeshes.cpp. Stores imported without meshes stay without the table.
+     */
+    Diagnostics createTileMeshes();
+    /**
+     * @brief Store one tier of a tile's simplified mesh (encodeMeshBlob output); `splitTiers`:
+     * the blob has QuantizedMesh::splitTiers (coarser tiers derive from it).
+     */
+    Diagnostics putTileMesh(const std::string& table, const TileId& id, int tier, double tolerance,
+                            std::size_t vertices, std::size_t triangles, bool splitTiers,
+                            const std::vector<std::uint8_t>& blob);
+    /** @brief Every tile of a table, coarse levels first (for a pass over a finished layer). */
+    Result<std::vector<TileId>> tileIds(const std::string& table);
+
     /** @brief Commit, set GeoPackage header fields, close. The writer is unusable after. */
     Diagnostics commit();
 
@@ -107,7 +122,7 @@ private:
     std::optional<TileGrid> mGrid;
     std::unique_ptr<TileQueries> mQueries;
     std::map<std::string, Statement> mInsertTile;
-    Statement mInsertAncillary, mInsertStats;
+    Statement mInsertAncillary, mInsertStats, mInsertMesh;
     std::map<std::string, double> mScaleOf;
     bool mCommitted = false;
 };

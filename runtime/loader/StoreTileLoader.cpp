@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <thread>
-
+#include <cmath>
 #include <string>
+#include <thread>
 #include <utility>
 
 namespace kiosk::loader {
@@ -41,12 +41,54 @@ void StoreTileLoader::loadArrivalThresholds(const LayerBinding& layer, int frame
             markFailure(p, std::move(r1.diagnostics));
             return;
         }
-        anim::computeArrivalThresholds(r0.values, r1->values, r0.postsX, r0.postsY,
-                                       layer.nodataAs, thresholds);
+        anim::computeArrivalThresholds(r0.values, r1->values, r0.postsX, r0.postsY, layer.nodataAs,
+                                       thresholds);
     }
     // The last frame (or a pair of mismatched tiles) switches nowhere.
     if (thresholds.size() != r0.values.size()) thresholds.assign(r0.values.size(), 0.0f);
     r0.values = std::move(thresholds);
+}
+
+bool StoreTileLoader::loadStoredMesh(const LayerBinding& layer, const TileId& id, int tier,
+                                     terrain::TilePayload& p) {
+    // Without stats the tile is absent or broken: readElevation says which.
+    const std::optional<io::TileStats> stats = mReader->tileStats(layer.name, id);
+    if (!stats) return false;
+    const double error = double(stats->geometricError);
+    const double tolerance = mOptions.tinTolerance(error, tier);
+    const double base = mOptions.tinTolerance(error);
+    Result<bool> row = mReader->readTileMesh(layer.name, id, tolerance, base, mMeshRow);
+    if (row.ok() && !*row) return false;  // none stored that fine: mesh the posts
+    if (row.ok()) {
+        const io::TileGrid& grid = mReader->info().grid;
+        const io::TileMeshRow& r = mMeshRow;
+        const double skirt = mOptions.skirtDepth(grid, id.level, error, tier);
+        // A coarser tier follows from tier 0's split tiers exactly (the query returned that
+        // row only when it has them and no row of `tolerance` exists).
+        const bool derive = std::abs(r.tolerance - tolerance) > 1e-12 * tolerance;
+        Diagnostics d =
+            derive
+                ? mStoredMeshes.derive(r.mesh, tier, id, grid, tolerance, skirt, p.mesh.emplace())
+                : mStoredMeshes.build(r.mesh, id, grid, r.tolerance, skirt, p.mesh.emplace());
+        if (!d.hasErrors()) {
+            p.stats = stats;
+            return true;
+        }
+        p.mesh.reset();
+        for (Diagnostic e : d.items()) {
+            e.file = mReader->info().path;
+            e.where = tileName(layer.name, id);
+            row.diagnostics.add(std::move(e));
+        }
+    }
+    // A corrupt stored mesh costs only the time to mesh the posts, which are intact: say so
+    // once for the tile and draw it anyway.
+    for (Diagnostic e : row.diagnostics.items()) {
+        e.severity = Severity::Warning;
+        e.message += " (meshed from the posts instead)";
+        p.diagnostics.add(std::move(e));
+    }
+    return false;
 }
 
 StoreTileLoader::StoreTileLoader(StoreOpener opener, std::vector<LayerBinding> layers,
@@ -92,6 +134,8 @@ TilePayload StoreTileLoader::load(const LoadRequest& request) {
     const TileId& id = request.key.id;
     switch (layer.kind) {
         case io::LayerKind::Elevation: {
+            // The elevation key's frame is the mesh's tolerance tier (TerrainOptions).
+            if (loadStoredMesh(layer, id, std::max(0, int(request.key.frame)), p)) break;
             Result<io::RasterTile> r = mReader->readElevation(layer.name, id);
             if (!r.ok()) {
                 markFailure(p, std::move(r.diagnostics));
@@ -99,7 +143,6 @@ TilePayload StoreTileLoader::load(const LoadRequest& request) {
             }
             p.diagnostics.append(r.diagnostics);
             p.stats = r->stats;
-            // The elevation key's frame is the mesh's tolerance tier (TerrainOptions).
             Result<terrain::TileMesh> mesh = terrain::buildTileMesh(
                 *r, mReader->info().grid, mOptions, mMesher, std::max(0, int(request.key.frame)));
             if (!mesh.ok()) {

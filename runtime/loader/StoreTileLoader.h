@@ -4,6 +4,7 @@
 #include "runtime/io/StoreReader.h"
 #include "runtime/loader/TileLoader.h"
 #include "runtime/terrain/RtinMesher.h"
+#include "runtime/terrain/StoredMesh.h"
 #include "runtime/terrain/TerrainOptions.h"
 
 #include <functional>
@@ -32,8 +33,10 @@ using StoreOpener = std::function<Result<std::unique_ptr<io::StoreReader>>()>;
 
 /**
  * @brief The standard LoadFunction: reads a tile from the store with a StoreReader owned by the
- * loader thread and, for elevation, builds its RTIN mesh with skirts (TerrainOptions must equal
- * the selector's). Imagery gives an RGBA image, sequences a float raster of frame `key.frame`.
+ * loader thread and, for elevation, decodes the mesh stored at import for the tile's tolerance
+ * (kiosk_tile_meshes) or, where the store has none, builds its RTIN mesh from the posts; skirts
+ * either way (TerrainOptions must equal the selector's). Imagery gives an RGBA image, sequences a
+ * float raster of frame `key.frame`.
  *
  * Bad data never throws: STORE_TILE_MISSING gives an Absent payload, any other error a Failed
  * one with the reader's diagnostics (naming layer and tile); a store that cannot be opened fails
@@ -52,6 +55,13 @@ public:
 
 private:
     void loadArrivalThresholds(const LayerBinding& layer, int frame, terrain::TilePayload& p);
+    /**
+     * @brief The tile's mesh from kiosk_tile_meshes when the store has one as fine as `tier`
+     * asks (true); false to mesh the posts (none stored, or a corrupt one: then a warning
+     * naming the tile is in `p`).
+     */
+    bool loadStoredMesh(const LayerBinding& layer, const TileId& id, int tier,
+                        terrain::TilePayload& p);
 
     StoreOpener mOpener;
     std::vector<LayerBinding> mLayers;
@@ -59,6 +69,8 @@ private:
     std::unique_ptr<io::StoreReader> mReader;
     Diagnostics mOpenDiagnostics;
     terrain::RtinMesher mMesher;
+    terrain::StoredMeshBuilder mStoredMeshes;
+    io::TileMeshRow mMeshRow;  // decoded stored mesh, buffers reused from tile to tile
     double mDelaySeconds = 0.0;
 };
 

@@ -411,6 +411,8 @@ void TerrainScene::drainCompletions() {
             if (p.status == terrain::TilePayload::Status::Absent) mStats.markAbsent(p.key.id);
         }
         if (p.status == terrain::TilePayload::Status::Failed) noteFailure(p);
+        if (p.diagnostics.has("STORE_MESH_CORRUPT"))  // a bad stored mesh: drawn from the posts
+            KIOSK_LOG_WARN(kTag, "%s", p.diagnostics.format().c_str());
         const terrain::TileKey key = p.key;
         const std::size_t cpu = p.byteSize();
         terrain::TileHandle h = mCache->insert(key, std::move(p), cpu);

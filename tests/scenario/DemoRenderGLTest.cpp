@@ -13,6 +13,7 @@
 
 #include "runtime/app/Session.h"
 #include "runtime/import/Importer.h"
+#include "runtime/io/SqliteDb.h"
 #include "runtime/io/StoreReader.h"
 #include "tests/support/EglTestContext.h"
 #include "tests/support/GoldenImage.h"
@@ -381,13 +382,10 @@ TEST_F(RealTerrain, PugetSoundLodStaysWithinTau) {
 }
 
 // The bundled demo (built by tools/prepare-demo.sh, which the quick start runs first).
-TEST_F(DemoScenario, RendersTheGolden) {
-    if (!fs::exists("data/generated/rainier.gpkg"))
-        KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_DATA", "demo store missing: run tools/prepare-demo.sh");
-    const gl::Caps* caps = &mCaps;
+void renderDemoGolden(const gl::Caps& caps, const fs::path& scenario) {
     auto rt = gl::RenderTarget::create(480, 270);
     ASSERT_TRUE(rt.ok());
-    auto s = Session::open("scenarios/demo/rainier.json", *caps);
+    auto s = Session::open(scenario, caps);
     ASSERT_TRUE(s.ok()) << s.diagnostics.format();
     Session& session = **s;
     const double t = session.startTime() + 3 * 3600;
@@ -411,6 +409,36 @@ TEST_F(DemoScenario, RendersTheGolden) {
     EXPECT_GT(water, 20) << "the synthetic flood should be visible at +3 h";
     // llvmpipe renders the same pixels for the same Mesa build; 3 DN absorbs point releases.
     EXPECT_EQ(test::compareWithGolden(img, "demo_rainier_3h", {3, 0.3}), "");
+}
+
+TEST_F(DemoScenario, RendersTheGolden) {
+    if (!fs::exists("data/generated/rainier.gpkg"))
+        KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_DATA", "demo store missing: run tools/prepare-demo.sh");
+    renderDemoGolden(mCaps, "scenarios/demo/rainier.json");
+}
+
+// Issue 20: the demo store carries meshes simplified at import; a store imported before that
+// (no kiosk_tile_meshes: every tile meshed on load) renders the same golden.
+TEST_F(DemoScenario, StoreWithoutStoredMeshesRendersTheGolden) {
+    if (!fs::exists("data/generated/rainier.gpkg"))
+        KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_DATA", "demo store missing: run tools/prepare-demo.sh");
+    const fs::path dir = fs::temp_directory_path() / "geokiosk-demo-without-meshes";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "scenarios/demo");
+    fs::create_directories(dir / "data/generated");
+    fs::copy_file("scenarios/demo/rainier.json", dir / "scenarios/demo/rainier.json");
+    const fs::path store = dir / "data/generated/rainier.gpkg";
+    fs::copy_file("data/generated/rainier.gpkg", store);
+    {
+        auto db = io::SqliteDb::open(store, io::SqliteDb::Mode::ReadWrite);
+        ASSERT_TRUE(db.ok());
+        ASSERT_TRUE(db->tableExists("kiosk_tile_meshes")) << "demo store predates issue 20";
+        ASSERT_FALSE(db->exec("DROP TABLE kiosk_tile_meshes; DELETE FROM gpkg_extensions WHERE "
+                              "table_name = 'kiosk_tile_meshes'")
+                         .hasErrors());
+    }
+    renderDemoGolden(mCaps, dir / "scenarios/demo/rainier.json");
+    fs::remove_all(dir);
 }
 
 // Issue 7: the demo shades with a normal-map layer under the keyed sun (azimuth 100 -> 200,
