@@ -1,5 +1,7 @@
 #include "config/PathPolicy.h"
 
+#include "runtime/core/SelfPath.h"
+
 #include <cstdlib>
 #include <mutex>
 #include <system_error>
@@ -60,9 +62,8 @@ std::vector<std::filesystem::path> allowedRoots(const std::filesystem::path& roo
     if (!ec && canonicalOf(cwd) != canonicalOf("/")) addUnique(roots, cwd);
     // The package's own read-only data (the shipped demo names ../../data from its scenario
     // folder): <prefix>/share/geokiosk beside <prefix>/bin/geokiosk, when installed.
-    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
-        const auto shared = exe.parent_path().parent_path() / "share" / "geokiosk";
+    if (const auto exeDir = core::executableDir(); !exeDir.empty()) {
+        const auto shared = exeDir.parent_path() / "share" / "geokiosk";
         if (std::filesystem::is_directory(shared, ec)) addUnique(roots, shared);
     }
     if (const char* env = std::getenv("GEOKIOSK_ALLOW_PATHS")) {

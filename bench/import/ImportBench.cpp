@@ -8,13 +8,11 @@
 // over all pyramid levels.
 #include "runtime/import/Importer.h"
 
-#include <cpl_string.h>
+#include "tools/synthetic-dem/SyntheticDem.h"
 #include <gdal.h>
-#include <ogr_srs_api.h>
 #include <sqlite3.h>
 
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -60,47 +58,6 @@ int execQuiet(const std::vector<std::string>& argv) {
     if (std::freopen("/dev/null", "w", stdout) == nullptr) return 127;
     execvp(a[0], a.data());
     return 127;
-}
-
-// Fractal-ish terrain, written strip by strip (bounded memory).
-bool makeDem(const fs::path& path, int n) {
-    GDALAllRegister();
-    char** co = nullptr;
-    co = CSLSetNameValue(co, "TILED", "YES");
-    co = CSLSetNameValue(co, "BIGTIFF", "IF_SAFER");
-    GDALDatasetH ds =
-        GDALCreate(GDALGetDriverByName("GTiff"), path.c_str(), n, n, 1, GDT_Float32, co);
-    CSLDestroy(co);
-    if (!ds) return false;
-    double gt[6] = {500000, 10, 0, 5300000, 0, -10};
-    GDALSetGeoTransform(ds, gt);
-    GDALSetProjection(ds, "EPSG:32610");
-    OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
-    OSRImportFromEPSG(srs, 32610);
-    GDALSetSpatialRef(ds, srs);
-    OSRDestroySpatialReference(srs);
-    GDALRasterBandH b = GDALGetRasterBand(ds, 1);
-    GDALSetRasterNoDataValue(b, -9999);
-    const int strip = 256;
-    std::vector<float> rows(std::size_t(n) * strip);
-    std::uint32_t seed = 12345;
-    for (int y0 = 0; y0 < n; y0 += strip) {
-        const int h = std::min(strip, n - y0);
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < n; ++x) {
-                const double u = double(x) / n, v = double(y0 + y) / n;
-                double z = 0, amp = 1500, f = 3;
-                for (int o = 0; o < 6; ++o, amp *= 0.45, f *= 2.1)
-                    z += amp * std::sin(f * 6.28318 * u + o) * std::cos(f * 5.1 * v + 2 * o);
-                seed = seed * 1664525u + 1013904223u;
-                z += double(seed >> 24) * 0.02;
-                rows[std::size_t(y) * std::size_t(n) + std::size_t(x)] = float(2000 + z);
-            }
-        if (GDALRasterIO(b, GF_Write, 0, y0, n, h, rows.data(), n, h, GDT_Float32, 0, 0) != CE_None)
-            return false;
-    }
-    GDALClose(ds);
-    return true;
 }
 
 long long countTiles(const fs::path& gpkg, const char* table) {
@@ -173,9 +130,13 @@ int main(int argc, char** argv) {
         fs::remove(ours);
         fs::remove(theirs);
         std::fprintf(stderr, "bench: generating %dx%d DEM\n", n, n);
-        if (!fs::exists(dem) && !makeDem(dem, n)) {
-            std::fprintf(stderr, "bench: cannot write %s\n", dem.c_str());
-            return 1;
+        if (!fs::exists(dem)) {
+            kiosk::tools::SyntheticDemOptions so;
+            so.size = n;
+            if (const std::string e = kiosk::tools::writeSyntheticDem(dem, so); !e.empty()) {
+                std::fprintf(stderr, "bench: %s\n", e.c_str());
+                return 1;
+            }
         }
         const double mb = double(n) * n * 4 / 1e6;
         std::fprintf(stderr, "bench: geokiosk import (%d)\n", n);

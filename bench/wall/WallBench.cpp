@@ -13,6 +13,7 @@
 #include "runtime/wall/ZmqTransport.h"
 
 #include "bench/common/HeadlessGl.h"
+#include "bench/common/SteadyTime.h"
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -31,11 +32,7 @@ using Us = std::chrono::microseconds;
 
 namespace {
 
-double nowUs() {
-    return std::chrono::duration<double, std::micro>(
-               std::chrono::steady_clock::now().time_since_epoch())
-        .count();
-}
+using bench::nowUs;
 
 struct BarrierRun {
     std::vector<double> barrierUs;  ///< state published -> release published

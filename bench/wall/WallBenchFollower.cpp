@@ -5,6 +5,8 @@
 #include "runtime/wall/FollowerSync.h"
 #include "runtime/wall/ZmqTransport.h"
 
+#include "bench/common/SteadyTime.h"
+
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
@@ -16,11 +18,7 @@ using Us = std::chrono::microseconds;
 
 namespace {
 
-double nowUs() {
-    return std::chrono::duration<double, std::micro>(
-               std::chrono::steady_clock::now().time_since_epoch())
-        .count();
-}
+using bench::nowUs;
 
 /** Swap times (µs, monotonic, shared by all processes) to `outPath` at Stop. */
 int runFollower(const std::string& state, const std::string& ready, std::uint32_t screen,

@@ -1,6 +1,7 @@
 #include "runtime/app/ImporterExec.h"
 
 #include "runtime/core/ExitCode.h"
+#include "runtime/core/SelfPath.h"
 
 #include <cerrno>
 #include <cstdio>
@@ -10,9 +11,7 @@
 namespace kiosk::app {
 
 std::filesystem::path importerPath() {
-    std::error_code ec;
-    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-    return (ec ? std::filesystem::path() : self.parent_path()) / kImporterName;
+    return core::executableDir() / kImporterName;
 }
 
 int execImporter(const std::vector<std::string>& args) {

@@ -1,5 +1,7 @@
 #include "runtime/export/StreamModule.h"
 
+#include "runtime/core/SelfPath.h"
+
 #include <dlfcn.h>
 #include <filesystem>
 #include <mutex>
@@ -16,7 +18,7 @@ struct Loaded {
 Loaded load() {
     namespace fs = std::filesystem;
     std::error_code ec;
-    const fs::path exeDir = fs::read_symlink("/proc/self/exe", ec).parent_path();
+    const fs::path exeDir = core::executableDir();
     // Beside the executable (the build folder's geokiosk), the installed layout
     // (bin/ -> lib/<arch>/geokiosk/), the build folder (tests and benchmarks in subfolders).
     const fs::path candidates[] = {exeDir / kAvModuleFile,

@@ -9,6 +9,7 @@
 #include "runtime/core/TimeParse.h"
 #include "runtime/import/Importer.h"
 #include "tests/support/EglTestContext.h"
+#include "tests/support/SettleView.h"
 
 #include <gtest/gtest.h>
 
@@ -97,10 +98,7 @@ protected:
 
         // Warm-up: the first view and its pair (a kiosk shows its first frame once loaded).
         s.setPlayback(scene::playbackOf(*clock));
-        for (int k = 0; k < 20000 && (k == 0 || !s.terrain().settled()); ++k) {
-            s.prepare(cam, clock->current());
-            std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        }
+        test::settleView(s, cam, clock->current());
         const auto loop0 = std::chrono::steady_clock::now();
         for (int i = 0; i < frames; ++i) {
             const bool ready = !s.terrain().frameInfo().holdingSequence;

@@ -6,6 +6,7 @@
 #include "runtime/app/Session.h"
 #include "runtime/render/FontAtlas.h"
 #include "tests/support/EglTestContext.h"
+#include "tests/support/SettleView.h"
 
 #include <gtest/gtest.h>
 
@@ -89,10 +90,7 @@ protected:
         scene::Playback paused;
         paused.paused = true;
         s.setPlayback(paused);
-        for (int k = 0; k < 30000 && (k == 0 || !s.terrain().settled()); ++k) {
-            s.prepare(cam, time);
-            std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        }
+        test::settleView(s, cam, time);
     }
     gl::Image draw(Session& s, const math::Camera& cam, double time) {
         auto rt = gl::RenderTarget::create(kW, kH);

@@ -8,6 +8,7 @@
 #include "tests/support/CrackCensus.h"
 #include "tests/support/EglTestContext.h"
 #include "tests/support/GoldenImage.h"
+#include "tests/support/SettleView.h"
 
 #include <gtest/gtest.h>
 
@@ -34,11 +35,7 @@ protected:
         const math::Camera cam =
             makeCamera(vp, s.terrain().bounds(), kW, kH, s.scenario().camera.fovY);
         rt.bind();
-        for (int k = 0; k < 60000 && (k == 0 || !s.terrain().settled()); ++k) {
-            s.prepare(cam, time);
-            if (!s.terrain().settled()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        }
-        EXPECT_TRUE(s.terrain().settled()) << label << ": tiles still loading";
+        EXPECT_TRUE(test::settleView(s, cam, time)) << label << ": tiles still loading";
         s.drawFrame(cam, time, kW, kH);
         const gl::Image img = rt.readColor();
         const test::CrackCount c = test::crackPixels(img);

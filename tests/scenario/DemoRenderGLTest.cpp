@@ -1,22 +1,23 @@
 // Scene-level tests on llvmpipe (issue 4): no cracks while tiles load and the camera flies,
 // residency within the byte budget, and the demo picture against its golden.
-#include <gdal_priv.h>
-#include <gtest/gtest.h>
-
-#include <chrono>
-#include <cstdio>
-#include <cmath>
-#include <filesystem>
-#include <functional>
-#include <fstream>
-#include <thread>
-
 #include "runtime/app/Session.h"
 #include "runtime/import/Importer.h"
 #include "runtime/io/StoreReader.h"
 #include "tests/support/EglTestContext.h"
 #include "tests/support/GoldenImage.h"
+#include "tests/support/SettleView.h"
 #include "tests/support/StoreSurface.h"
+
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <thread>
 
 namespace kiosk::app {
 namespace {
@@ -28,12 +29,8 @@ bool isSky(const std::uint8_t* p) {
     return std::abs(p[0] - 158) <= 2 && std::abs(p[1] - 181) <= 2 && std::abs(p[2] - 204) <= 2;
 }
 
-/** Let the loader bring every tile of `cam` at `time` (render's deterministic wait). */
 void settle(Session& s, const math::Camera& cam, double time) {
-    for (int k = 0; k < 30000 && (k == 0 || !s.terrain().settled()); ++k) {
-        s.prepare(cam, time);
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
+    test::settleView(s, cam, time);
 }
 
 /** A void-free synthetic DEM (ridges and valleys, 20 m posts, UTM 10N) imported into a store. */
@@ -79,8 +76,8 @@ protected:
             fd->SetGeoTransform(geo);
             fd->SetSpatialRef(&srs);
             std::vector<float> v(std::size_t(n) * n, float(k) + 0.5f);
-            if (fd->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, n, n, v.data(), n, n, GDT_Float32,
-                                               0, 0) != CE_None)
+            if (fd->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, n, n, v.data(), n, n, GDT_Float32, 0,
+                                               0) != CE_None)
                 sImportDiagnostics = "cannot write a frame";
             GDALClose(fd);
             csv << f.filename().string() << ",2026-03-14T0" << k << ":00:00Z\n";
@@ -102,7 +99,8 @@ protected:
     fs::path writeScenario(const std::string& terrainExtra) {
         const fs::path p = sDir / "scene.json";
         std::ofstream(p) << R"({ "version": 1, "title": "", "stores": { "s": "synthetic.gpkg" },
-            "terrain": { "store": "s", "tauGeom": 1, "tauTex": 1 )" << terrainExtra << R"( },
+            "terrain": { "store": "s", "tauGeom": 1, "tauTex": 1 )"
+                         << terrainExtra << R"( },
             "layers": [] })";
         return p;
     }
@@ -149,10 +147,14 @@ TEST_F(SyntheticTerrain, NoCracksWhileLoadingAlongAFlight) {
         for (int y = 0; y < img.height; ++y)
             for (int x = 0; x < img.width; ++x)
                 if (isSky(img.pixel(x, y)) && sky++ == 0) firstX = x, firstY = y;
-        EXPECT_EQ(sky, 0) << "frame " << i << ": " << sky << " sky pixels inside the terrain, first at ("
-                          << firstX << ", " << firstY << ") ("
-                          << rec.tilesDrawn << " tiles, " << rec.tilesFromAncestor << " from ancestors)";
-        if (sky) test::writeImage((fs::temp_directory_path() / ("crack-" + std::to_string(i) + ".png")).string(), img);
+        EXPECT_EQ(sky, 0) << "frame " << i << ": " << sky
+                          << " sky pixels inside the terrain, first at (" << firstX << ", "
+                          << firstY << ") (" << rec.tilesDrawn << " tiles, "
+                          << rec.tilesFromAncestor << " from ancestors)";
+        if (sky)
+            test::writeImage(
+                (fs::temp_directory_path() / ("crack-" + std::to_string(i) + ".png")).string(),
+                img);
     }
     // The test must have exercised the loading state, not only a fully resident cache.
     EXPECT_GT(framesWithAncestors, 0);
@@ -161,8 +163,8 @@ TEST_F(SyntheticTerrain, NoCracksWhileLoadingAlongAFlight) {
 TEST_F(SyntheticTerrain, ResidentBytesStayWithinTheBudget) {
     auto rt = makeTarget(320, 200);
     const std::int64_t cpu = 3 << 20, gpu = 2 << 20;
-    auto s = open(writeScenario(", \"cacheBytes\": " + std::to_string(cpu) + ", \"gpuBytes\": " +
-                                std::to_string(gpu)));
+    auto s = open(writeScenario(", \"cacheBytes\": " + std::to_string(cpu) +
+                                ", \"gpuBytes\": " + std::to_string(gpu)));
     ASSERT_TRUE(s);
     std::uint64_t peak = 0;
     for (int i = 0; i < 60; ++i) {
@@ -261,7 +263,8 @@ Fidelity measureFidelity(Session& s, gl::RenderTarget& target, const math::Viewp
         const double zFull = surface(X, Y);
         if (std::isnan(zFull)) continue;
         const double distance = glm::distance(cam.eye, glm::dvec3(X, Y, double(p[2])));
-        f.worstPx = std::max(f.worstPx, std::fabs(double(p[2]) - zFull) * cam.pixelsPerMetreAt(distance));
+        f.worstPx =
+            std::max(f.worstPx, std::fabs(double(p[2]) - zFull) * cam.pixelsPerMetreAt(distance));
         ++f.measured;
     }
     return f;
@@ -295,8 +298,8 @@ TEST_F(SyntheticTerrain, LodStaysWithinTauOfTheFullResolutionSurface) {
                ay * ((1 - ax) * syntheticHeight(x0, y0 + 1) + ax * syntheticHeight(x0 + 1, y0 + 1));
     };
     const math::Viewpoint views[] = {
-        {glm::dvec3(607000, 5193000, 900), 30, -25, 6000},   // oblique: many levels at once
-        {glm::dvec3(605000, 5195000, 900), 300, -55, 2500},  // close: finest tiles
+        {glm::dvec3(607000, 5193000, 900), 30, -25, 6000},    // oblique: many levels at once
+        {glm::dvec3(605000, 5195000, 900), 300, -55, 2500},   // close: finest tiles
         {glm::dvec3(607000, 5193000, 900), 120, -40, 16000},  // far: coarse tiles
     };
     std::uint64_t lodTriangles = 0;
@@ -310,10 +313,11 @@ TEST_F(SyntheticTerrain, LodStaysWithinTauOfTheFullResolutionSurface) {
         EXPECT_GT(f.measured, W * H / 4) << "view heading " << vp.headingDeg;
         // Allowance 0.25 px: the store quantises posts to 1/32 m, the finest tiles' TIN keeps
         // 0.1 m, and a triangle differs from the bilinear cell by a quarter of its twist.
-        EXPECT_LE(f.worstPx, 1.0 + 0.25) << "view heading " << vp.headingDeg << ", " << f.triangles
-                                         << " triangles";
-        std::printf("view heading %.0f: worst screen-space error %.3f px over %d pixels, %llu triangles\n",
-                    vp.headingDeg, f.worstPx, f.measured, (unsigned long long)f.triangles);
+        EXPECT_LE(f.worstPx, 1.0 + 0.25)
+            << "view heading " << vp.headingDeg << ", " << f.triangles << " triangles";
+        std::printf(
+            "view heading %.0f: worst screen-space error %.3f px over %d pixels, %llu triangles\n",
+            vp.headingDeg, f.worstPx, f.measured, (unsigned long long)f.triangles);
     }
     // And LOD is the point: the same views at full resolution cost more triangles.
     auto full = Session::open(writeScenario(""), mCaps, [](config::Scenario& sc) {
@@ -342,7 +346,8 @@ TEST_F(RealTerrain, PugetSoundLodStaysWithinTau) {
     const std::string puget = test::sharedData("puget_sound_heightmap/ps_height_1k.png");
     if (puget.empty()) KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_DATA", "../shared/data not present");
     const gl::Caps* caps = &mCaps;
-    if (!caps->colorBufferFloat) KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_GL", "no EXT_color_buffer_float");
+    if (!caps->colorBufferFloat)
+        KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_GL", "no EXT_color_buffer_float");
     const fs::path dir = fs::temp_directory_path() / ("kiosk-puget-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     import::ImportOptions io;
@@ -353,7 +358,8 @@ TEST_F(RealTerrain, PugetSoundLodStaysWithinTau) {
     io.quiet = true;
     const Diagnostics imported = import::importElevation(puget, io);
     ASSERT_FALSE(imported.hasErrors()) << imported.format();
-    std::ofstream(dir / "puget.json") << R"({ "version": 1, "title": "", "stores": { "p": "puget.gpkg" },
+    std::ofstream(dir / "puget.json")
+        << R"({ "version": 1, "title": "", "stores": { "p": "puget.gpkg" },
         "terrain": { "store": "p", "tauGeom": 1, "tauTex": 1 }, "layers": [] })";
     auto s = Session::open(dir / "puget.json", *caps);
     ASSERT_TRUE(s.ok()) << s.diagnostics.format();
@@ -368,10 +374,12 @@ TEST_F(RealTerrain, PugetSoundLodStaysWithinTau) {
         {glm::dvec3(c.x + 10000, c.y - 10000, 300), 250, -60, 12000},
     };
     for (const auto& vp : views) {
-        const Fidelity f = measureFidelity(**s, *target, vp, [&](double x, double y) { return surface.at(x, y); });
+        const Fidelity f =
+            measureFidelity(**s, *target, vp, [&](double x, double y) { return surface.at(x, y); });
         EXPECT_GT(f.measured, 320 * 200 / 5) << "heading " << vp.headingDeg;
         // Allowance as for the synthetic test: quantisation, the finest TIN's 0.1 m, twist.
-        EXPECT_LE(f.worstPx, 1.0 + 0.25) << "heading " << vp.headingDeg << ", " << f.triangles << " triangles";
+        EXPECT_LE(f.worstPx, 1.0 + 0.25)
+            << "heading " << vp.headingDeg << ", " << f.triangles << " triangles";
         std::printf("puget heading %.0f: worst %.3f px over %d px, %llu triangles\n", vp.headingDeg,
                     f.worstPx, f.measured, (unsigned long long)f.triangles);
     }

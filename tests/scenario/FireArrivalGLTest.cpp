@@ -6,6 +6,7 @@
 #include "runtime/core/TimeParse.h"
 #include "runtime/import/Importer.h"
 #include "tests/support/EglTestContext.h"
+#include "tests/support/SettleView.h"
 
 #include <gdal_priv.h>
 #include <gtest/gtest.h>
@@ -106,10 +107,7 @@ protected:
     }
     Counts draw(Session& s, gl::RenderTarget& rt, double time, const math::Viewpoint& vp) {
         const math::Camera cam = makeCamera(vp, s.terrain().bounds(), kView, kView, 45.0);
-        for (int k = 0; k < 20000 && (k == 0 || !s.terrain().settled()); ++k) {
-            s.prepare(cam, time);
-            std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        }
+        test::settleView(s, cam, time);
         rt.bind();
         s.drawFrame(cam, time, kView, kView);
         const gl::Image img = rt.readColor();

@@ -4,6 +4,7 @@
 // the same frame with and without the overlay and looks at where the pictures differ.
 #include "runtime/app/Session.h"
 #include "tests/support/EglTestContext.h"
+#include "tests/support/SettleView.h"
 
 #include <gtest/gtest.h>
 
@@ -57,10 +58,7 @@ protected:
         auto vp = session.viewpointAt(t, viewpoint);
         EXPECT_TRUE(vp.ok());
         const math::Camera cam = makeCamera(*vp, session.terrain().bounds(), kW, kH, 45);
-        for (int k = 0; k < 30000 && (k == 0 || !session.terrain().settled()); ++k) {
-            session.prepare(cam, t);
-            std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        }
+        test::settleView(session, cam, t);
         rt->bind();
         session.drawFrame(cam, t, kW, kH);
         return rt->readColor();

@@ -7,6 +7,7 @@
 #include "runtime/terrain/DetailSketch.h"
 #include "tests/support/EglTestContext.h"
 #include "tests/support/GoldenImage.h"
+#include "tests/support/SettleView.h"
 
 #include <gdal_priv.h>
 #include <gtest/gtest.h>
@@ -40,10 +41,7 @@ bool isSky(const std::uint8_t* p) {
 }
 
 void settle(Session& s, const math::Camera& cam) {
-    for (int k = 0; k < 30000 && (k == 0 || !s.terrain().settled()); ++k) {
-        s.prepare(cam, s.startTime());
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
+    test::settleView(s, cam, s.startTime());
 }
 
 class ProceduralDetail : public test::EglTest {

@@ -4,6 +4,7 @@
 // every LOD pixel's height is compared with the reference surface's at the same x, y.
 #include "runtime/app/Session.h"
 #include "tests/support/EglTestContext.h"
+#include "tests/support/SettleView.h"
 #include "tests/support/StoreSurface.h"
 
 #include <gtest/gtest.h>
@@ -41,11 +42,7 @@ Positions renderPositions(Session& s, const math::Viewpoint& vp, int w, int h) {
     EXPECT_TRUE(target.ok()) << target.diagnostics.format();
     if (!target) return out;
     const math::Camera cam = makeCamera(vp, s.terrain().bounds(), w, h, 45);
-    for (int k = 0; k < 60000 && (k == 0 || !s.terrain().settled()); ++k) {
-        s.prepare(cam, s.startTime());
-        if (!s.terrain().settled()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    EXPECT_TRUE(s.terrain().settled());
+    EXPECT_TRUE(test::settleView(s, cam, s.startTime()));
     target->bind();
     out.triangles = s.drawFrame(cam, s.startTime(), w, h).triangles;
     out.w = w;
