@@ -201,7 +201,7 @@ private:
                   "store " + quote(storeId) + " is in " + crsText(info.grid) +
                       ", the terrain's store " + quote(mS.terrain.store) + " in " +
                       crsText(terrain->grid) + "; a layer's store must share the terrain's CRS")
-                .hint = "import the data again onto the terrain's CRS (geokiosk-import --to-crs)";
+                .hint = "import it again with geokiosk-import --to-crs set to the terrain's CRS";
             return false;
         }
         if (const std::string why = tileGridDifference(terrain->grid, info.grid); !why.empty()) {

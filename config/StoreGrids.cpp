@@ -26,7 +26,7 @@ bool sameCrs(const io::TileGrid& a, const io::TileGrid& b) {
 
 std::string crsText(const io::TileGrid& g) {
     std::string name = g.crsName.empty() ? std::string("unnamed CRS") : g.crsName;
-    if (g.srsId > 0) name += " (EPSG:" + std::to_string(g.srsId) + ")";
+    if (g.srsId > 0) name += " (srs_id " + std::to_string(g.srsId) + ")";  // as `info` says
     return name;
 }
 

@@ -11,7 +11,7 @@ namespace kiosk::config {
 
 /** @brief Same CRS: the same srs id, and the same WKT when either has no id. */
 bool sameCrs(const io::TileGrid& a, const io::TileGrid& b);
-/** @brief "WGS 84 / UTM zone 55S (EPSG:32755)" for messages. */
+/** @brief "WGS 84 / UTM zone 55S (srs_id 32755)" for messages, as `geokiosk info` names it. */
 std::string crsText(const io::TileGrid& g);
 /**
  * @brief Same tile grid: origin, tile size and the pixel size of every level both have (one
