@@ -13,7 +13,7 @@ namespace kiosk::tools {
 
 std::string writeSyntheticDem(const std::filesystem::path& out, const SyntheticDemOptions& o) {
     if (o.size < 2 || o.size > 65536) return "size must be 2..65536 posts";
-    if (!(o.post > 0)) return "post spacing must be > 0";
+    if (!(o.post > 0) || !(o.featureMetres > 0)) return "spacing and feature scale must be > 0";
     GDALAllRegister();
     char** co = nullptr;
     co = CSLSetNameValue(co, "TILED", "YES");
@@ -39,13 +39,13 @@ std::string writeSyntheticDem(const std::filesystem::path& out, const SyntheticD
         const int h = std::min(strip, n - y0);
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < n; ++x) {
-                // Features scale with the grid (same look at 4k and 16k, finer octaves at 16k).
-                const double u = double(x) / n, v = double(y0 + y) / n;
+                const double u = double(x) * o.post / o.featureMetres;
+                const double v = double(y0 + y) * o.post / o.featureMetres;
                 double z = 0, amp = 1500, f = 3;
                 for (int oct = 0; oct < 6; ++oct, amp *= 0.45, f *= 2.1)
                     z += amp * std::sin(f * 6.28318 * u + oct) * std::cos(f * 5.1 * v + 2 * oct);
                 seed = seed * 1664525u + 1013904223u;
-                z += double(seed >> 24) * 0.02;
+                z += double(seed >> 8) / double(1u << 24) * o.noiseMetres;
                 rows[std::size_t(y) * std::size_t(n) + std::size_t(x)] = float(2000 + z);
             }
         if (GDALRasterIO(b, GF_Write, 0, y0, n, h, rows.data(), n, h, GDT_Float32, 0, 0) != CE_None)
