@@ -39,18 +39,23 @@ Result<FrameOutput> FrameOutput::video(const video::VideoOptions& options) {
     return o;
 }
 
-bool FrameOutput::write(const gl::Image& frame, Diagnostics& diags) {
+bool FrameOutput::write(const gl::RenderTarget& target, Diagnostics& diags) {
     ++mWritten;
     switch (mKind) {
         case Kind::Png:
-            return writePng(mPath, frame, diags);
+            return writePng(mPath, target.readColor(), diags);
         case Kind::PngFolder: {
             char name[32];
             std::snprintf(name, sizeof name, "%06zu.png", mWritten);
-            return writePng(mPath / name, frame, diags);
+            return writePng(mPath / name, target.readColor(), diags);
         }
-        case Kind::Video:
-            return mEncoder->push(frame.rgba.data(), diags);
+        case Kind::Video: {
+            std::uint8_t* slot = mEncoder->acquire(diags);
+            if (!slot) return false;
+            target.readInto(slot);
+            mEncoder->submit();
+            return true;
+        }
     }
     return false;
 }

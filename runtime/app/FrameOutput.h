@@ -14,8 +14,9 @@ namespace kiosk::app {
 
 /**
  * @brief Where `render` puts its frames: one PNG, a folder of numbered PNGs, or a video file.
- * Every kind receives the same RGBA readback, so a video frame is the PNG frame (exactly, for
- * FFV1). Render thread only; a video encodes on its own thread behind a bounded queue.
+ * Every kind reads the same RGBA pixels, so a video frame is the PNG frame (exactly, for FFV1).
+ * Render thread only; a video is read back straight into the encoder's bounded queue and
+ * encoded on its own thread.
  */
 class FrameOutput {
 public:
@@ -28,7 +29,8 @@ public:
     static FrameOutput folder(std::filesystem::path dir);
     static Result<FrameOutput> video(const video::VideoOptions& options);
 
-    bool write(const gl::Image& frame, Diagnostics& diags);
+    /** @brief Read the finished frame from `target` and write it (GL current). */
+    bool write(const gl::RenderTarget& target, Diagnostics& diags);
     /** @brief Close a video (drain, trailer, chapters); nothing for PNGs. */
     bool finish(Diagnostics& diags);
     Kind kind() const noexcept { return mKind; }

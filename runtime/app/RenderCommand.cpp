@@ -254,9 +254,8 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         glFinish();
         rec.frameMs = (clock.now() - t0) * 1000.0;
         stats.add(rec);
-        const gl::Image img = target->readColor();
         Diagnostics d;
-        if (!output->write(img, d)) {
+        if (!output->write(*target, d)) {
             printDiagnostics(d);
             return kExitBadInput;
         }

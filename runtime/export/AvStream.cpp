@@ -204,13 +204,14 @@ bool AvStream::encode(const std::uint8_t* rgba, Diagnostics& diags) {
     }
     const int w = mOptions.width, h = mOptions.height;
     if (mSws) {
-        const std::uint8_t* src[1] = {rgba};
-        const int stride[1] = {w * 4};
+        // Bottom row first (glReadPixels' order): start at the top row and step upwards.
+        const std::uint8_t* src[1] = {rgba + std::size_t(h - 1) * std::size_t(w) * 4};
+        const int stride[1] = {-w * 4};
         sws_scale(mSws, src, stride, 0, h, mFrame->data, mFrame->linesize);
     } else {
         // RGBA bytes -> 0x00RRGGBB words: a plain repack of the samples (nothing to round).
         for (int y = 0; y < h; ++y) {
-            const std::uint8_t* s = rgba + std::size_t(y) * std::size_t(w) * 4;
+            const std::uint8_t* s = rgba + std::size_t(h - 1 - y) * std::size_t(w) * 4;
             auto* d = reinterpret_cast<std::uint32_t*>(mFrame->data[0] +
                                                        std::ptrdiff_t(y) * mFrame->linesize[0]);
             for (int x = 0; x < w; ++x, s += 4)

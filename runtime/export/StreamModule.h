@@ -18,7 +18,7 @@ class EncoderStream {
 public:
     virtual ~EncoderStream() = default;
     virtual bool open(const VideoOptions& options, Diagnostics& diags) = 0;
-    /** @brief Convert one RGBA8 frame (top row first) and encode it. */
+    /** @brief Convert one RGBA8 frame (bottom row first, glReadPixels' order) and encode it. */
     virtual bool encode(const std::uint8_t* rgba, Diagnostics& diags) = 0;
     /** @brief Flush the codec, write the trailer, move the file into place. */
     virtual bool close(Diagnostics& diags) = 0;

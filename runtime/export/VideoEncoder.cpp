@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <condition_variable>
-#include <cstring>
 #include <deque>
 #include <mutex>
 #include <thread>
@@ -21,6 +20,7 @@ struct VideoEncoder::Impl {
     std::size_t frameBytes = 0;
     std::vector<std::vector<std::uint8_t>> pool;
     std::deque<std::size_t> freeSlots, ready;
+    std::size_t filling = 0;  ///< the slot acquire() handed out
     std::mutex mutex;
     std::condition_variable changed;
     bool closing = false;
@@ -90,24 +90,24 @@ VideoEncoder::~VideoEncoder() {
     }
 }
 
-bool VideoEncoder::push(const std::uint8_t* rgba, Diagnostics& diags) {
+std::uint8_t* VideoEncoder::acquire(Diagnostics& diags) {
     Impl& m = *mImpl;
-    std::size_t slot = 0;
-    {
-        std::unique_lock lock(m.mutex);
-        m.changed.wait(lock, [&] { return !m.freeSlots.empty() || m.failed; });
-        if (m.failed) {
-            diags.append(m.error);
-            return false;
-        }
-        slot = m.freeSlots.front();
-        m.freeSlots.pop_front();
+    std::unique_lock lock(m.mutex);
+    m.changed.wait(lock, [&] { return !m.freeSlots.empty() || m.failed; });
+    if (m.failed) {
+        diags.append(m.error);
+        return nullptr;
     }
-    std::memcpy(m.pool[slot].data(), rgba, m.frameBytes);
+    m.filling = m.freeSlots.front();
+    m.freeSlots.pop_front();
+    return m.pool[m.filling].data();
+}
+
+void VideoEncoder::submit() {
+    Impl& m = *mImpl;
     std::lock_guard lock(m.mutex);
-    m.ready.push_back(slot);
+    m.ready.push_back(m.filling);
     m.changed.notify_all();
-    return true;
 }
 
 bool VideoEncoder::finish(Diagnostics& diags) {

@@ -41,7 +41,7 @@ struct VideoOptions {
      * FFV1. */
     std::optional<int> crf;
     std::vector<VideoChapter> chapters;
-    /** @brief Frames that may wait for the encoder thread before push() blocks. */
+    /** @brief Frames that may wait for the encoder thread before acquire() blocks. */
     int queueFrames = 4;
 };
 
@@ -51,15 +51,17 @@ int defaultCrf(VideoFormat f) noexcept;
 int maxCrf(VideoFormat f) noexcept;
 
 /**
- * @brief Encodes RGBA8 frames (top row first) into a video file on its own thread.
+ * @brief Encodes RGBA8 frames into a video file on its own thread. Frames are bottom row first,
+ * as glReadPixels writes them: the encoder thread reads the rows upwards while converting, so
+ * the render thread reads back straight into the queue and neither flips nor copies.
  *
- * push() copies a frame into one of a fixed pool of buffers and returns at once while a buffer
- * is free (bounded memory: queueFrames frames), so rendering the next frame overlaps encoding
- * this one. finish() drains the queue, flushes the codec and writes the trailer (and the
- * chapters). Errors (disk full, codec failure) surface at the next push() or at finish().
- * Codes: EXPORT_MODULE (the FFmpeg module geokiosk-av.so cannot be loaded; StreamModule.h),
- * EXPORT_CODEC (encoder missing from this FFmpeg build), EXPORT_OPEN, EXPORT_ENCODE,
- * EXPORT_WRITE.
+ * acquire() hands out one of a fixed pool of frame buffers (bounded memory: queueFrames frames)
+ * for the caller to fill (the readback writes straight into it) and submit() queues it, so
+ * rendering the next frame overlaps encoding this one. finish() drains the queue, flushes the codec
+ * and writes the trailer (and the chapters). Errors (disk full, codec failure) surface at the next
+ * acquire() or at finish(). Codes: EXPORT_MODULE (the FFmpeg module geokiosk-av.so cannot be
+ * loaded; StreamModule.h), EXPORT_CODEC (encoder missing from this FFmpeg build), EXPORT_OPEN,
+ * EXPORT_ENCODE, EXPORT_WRITE.
  */
 class VideoEncoder {
 public:
@@ -68,8 +70,11 @@ public:
     VideoEncoder(const VideoEncoder&) = delete;
     VideoEncoder& operator=(const VideoEncoder&) = delete;
 
-    /** @brief Queue one frame (width*height*4 bytes). False once encoding failed. */
-    bool push(const std::uint8_t* rgba, Diagnostics& diags);
+    /** @brief A free frame buffer (width*height*4 bytes) to fill, waiting while the encoder is
+     * queueFrames behind; null once encoding failed (the reason appended to `diags`). */
+    std::uint8_t* acquire(Diagnostics& diags);
+    /** @brief Queue the buffer the last acquire() returned, filled. */
+    void submit();
     /** @brief Encode what is queued, flush and close the file. Call once. */
     bool finish(Diagnostics& diags);
 

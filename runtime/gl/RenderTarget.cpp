@@ -58,6 +58,12 @@ Image RenderTarget::readColor() const {
     return readPixels(mWidth, mHeight);
 }
 
+void RenderTarget::readInto(std::uint8_t* dst) const {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, mFbo.id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, mWidth, mHeight, GL_RGBA, GL_UNSIGNED_BYTE, dst);
+}
+
 std::vector<float> RenderTarget::readFloat() const {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, mFbo.id());
     std::vector<float> px(std::size_t(mWidth) * std::size_t(mHeight) * 4);

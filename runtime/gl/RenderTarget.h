@@ -38,6 +38,9 @@ public:
 
     /** @brief Read the colour buffer into an image, flipped to top-row-first. */
     Image readColor() const;
+    /** @brief Read the colour buffer as GL stores it (RGBA8, bottom row first, tightly packed)
+     * into `dst` (width*height*4 bytes): no allocation, no flip (the video export's readback). */
+    void readInto(std::uint8_t* dst) const;
     /** @brief Float target only: RGBA floats, top row first. */
     std::vector<float> readFloat() const;
 
