@@ -1,5 +1,6 @@
 #pragma once
 
+#include "config/MemoryBudgets.h"
 #include "runtime/core/Result.h"
 
 #include <cstdint>
@@ -40,6 +41,8 @@ struct KioskFile {
     /** @brief Per-kiosk cache budgets applied to every entry (terrain.cacheBytes / gpuBytes). */
     std::optional<std::int64_t> cacheBytes;
     std::optional<std::int64_t> gpuBytes;
+    /** @brief LUT, mapping-array, font-atlas and SQLite page-cache budgets (with where set). */
+    MemoryBudgets memory;
     std::filesystem::path file;
 };
 

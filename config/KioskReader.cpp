@@ -91,6 +91,22 @@ public:
         return j.get<std::int64_t>();
     }
 
+    /** @brief A memory budget with where it was set (refusals name the kiosk file's line). */
+    void memoryBudget(const json& b, const char* key, std::int64_t minimum, MemoryBudget& out) {
+        if (!b.contains(key)) return;
+        const std::string ptr = std::string("/budgets/") + key;
+        const json& j = b[key];
+        if (!j.is_number_integer() || j.get<std::int64_t>() < minimum ||
+            j.get<std::int64_t>() > (std::int64_t(1) << 40)) {
+            error("KIOSK_BAD_VALUE", ptr,
+                  "expected a whole number of bytes from " + std::to_string(minimum) + " to 1 TiB");
+            return;
+        }
+        const Location l = mDoc.sourceMap.value(ptr);
+        out = {j.get<std::int64_t>(), l.file.empty() ? mDoc.files.front().string() : l.file, l.line,
+               l.column, ptr};
+    }
+
     void entry(const json& j, const std::string& ptr, KioskFile& out) {
         if (!object(j, ptr, "Entry")) return;
         KioskEntry e;
@@ -191,6 +207,11 @@ public:
             if (b.contains("cacheBytes"))
                 out.cacheBytes = bytes(b["cacheBytes"], "/budgets/cacheBytes");
             if (b.contains("gpuBytes")) out.gpuBytes = bytes(b["gpuBytes"], "/budgets/gpuBytes");
+            // Minimums: one LUT (1024 RGBA8 texels), a small font, SQLite's largest page.
+            memoryBudget(b, "lutBytes", 4096, out.memory.luts);
+            memoryBudget(b, "mappingBytes", 1 << 20, out.memory.mappings);
+            memoryBudget(b, "fontAtlasBytes", 4096, out.memory.fontAtlas);
+            memoryBudget(b, "sqlitePageCacheBytes", 65536, out.memory.sqlitePageCache);
         }
     }
 
@@ -207,7 +228,9 @@ const std::map<std::string, std::vector<std::string>>& kioskProperties() {
         {"Entry", {"scenario", "duration", "loops", "window", "title"}},
         {"Window", {"from", "to"}},
         {"Transition", {"kind", "seconds"}},
-        {"Budgets", {"cacheBytes", "gpuBytes"}},
+        {"Budgets",
+         {"cacheBytes", "gpuBytes", "lutBytes", "mappingBytes", "fontAtlasBytes",
+          "sqlitePageCacheBytes"}},
     };
     return table;
 }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "config/MemoryBudgets.h"
 #include "config/SourceMap.h"
 #include "runtime/color/TransferFunction.h"
 #include "runtime/core/TimeParse.h"
@@ -337,6 +338,8 @@ struct Scenario {
     Lighting lighting;
     std::optional<Briefing> briefing;
     Governor governor;
+    /** @brief Set by the kiosk file playing this scenario (KioskPlaylist), never by the file. */
+    MemoryBudgets memoryBudgets;
 
     /** @brief The scenario file first, then every included or referenced file (hot reload). */
     std::vector<std::filesystem::path> sourceFiles;

@@ -1,11 +1,13 @@
 #include "runtime/app/KioskHooks.h"
 
 #include "config/KioskFile.h"
+#include "runtime/app/MemoryBudgets.h"
 #include "runtime/app/Report.h"
 #include "runtime/app/Session.h"
 #include "runtime/app/Signals.h"
 #include "runtime/core/ExitCode.h"
 #include "runtime/core/Log.h"
+#include "runtime/io/StoreReader.h"
 
 #include <sqlite3.h>
 
@@ -39,6 +41,8 @@ std::unique_ptr<KioskHooks> KioskHooks::create(const Args& args, const std::file
             exitCode = kExitBadInput;
             return nullptr;
         }
+        // Every store connection opened from now on (the playlist's sessions, their loaders).
+        io::StoreReader::setPageCacheBytes(kf->memory.sqlitePageCache.bytes);
         playlist = std::make_unique<KioskPlaylist>(std::move(*kf.value));
     }
     std::optional<std::string> listen = args.value("listen");
@@ -137,6 +141,19 @@ void KioskHooks::frameDone(Session& session, const anim::ScenarioClock& clock,
     if (sqlite3_status64(SQLITE_STATUS_PAGECACHE_OVERFLOW, &current, &high, 0) == SQLITE_OK)
         s.cache.sqlitePageCache = std::uint64_t(current);
     s.loaderQueue = usage.loaderQueue;
+    const Session::MemoryUsage memory = session.memoryUsage();
+    s.cache.luts = memory.lutBytes;
+    s.cache.mappings = memory.mappingBytes;
+    s.cache.fontAtlas = memory.fontAtlasBytes;
+    const EffectiveBudgets b = effectiveBudgets(session.scenario().memoryBudgets);
+    s.budgets.cpuTiles = usage.cpuBudget;
+    s.budgets.gpu = usage.gpuBudget;
+    s.budgets.luts = b.lutBytes;
+    s.budgets.mappings = b.mappingBytes;
+    s.budgets.fontAtlas = b.fontAtlasBytes;
+    s.budgets.storeConnections = io::StoreReader::openConnections();
+    s.budgets.sqlitePageCache = std::uint64_t(io::StoreReader::pageCacheBytes()) *
+                                std::uint64_t(s.budgets.storeConnections);
     const auto& layers = session.terrain().layerStatus();
     s.layers.resize(layers.size());
     for (std::size_t i = 0; i < layers.size(); ++i) {

@@ -68,6 +68,7 @@ std::unique_ptr<Session> KioskPlaylist::open(int step, const gl::Caps& caps, Dia
 void KioskPlaylist::applyBudgets(config::Scenario& s) const {
     if (mFile.cacheBytes) s.terrain.cacheBytes = *mFile.cacheBytes;
     if (mFile.gpuBytes) s.terrain.gpuBytes = *mFile.gpuBytes;
+    s.memoryBudgets = mFile.memory;  // LUTs, mapping arrays, font atlas (Session enforces)
 }
 
 Result<std::unique_ptr<Session>> KioskPlaylist::reopen(const gl::Caps& caps) const {

@@ -3,6 +3,7 @@
 #include "config/DataUnits.h"
 #include "config/ScenarioReader.h"
 #include "runtime/anim/KeyedTrack.h"
+#include "runtime/app/MemoryBudgets.h"
 #include "runtime/app/ScenarioStores.h"
 #include "runtime/app/SolarLighting.h"
 #include "runtime/color/Legend.h"
@@ -77,6 +78,8 @@ Result<std::unique_ptr<Session>> Session::create(
     std::unique_ptr<Session> s(new Session());
     s->mScenario = std::move(scenario);
     if (adjust) adjust(*s->mScenario);
+    // LUTs and mapping arrays over budget: refused before anything is allocated.
+    if (Diagnostics d = checkMemoryBudgets(*s->mScenario); d.hasErrors()) return d;
 
     auto scene = scene::TerrainScene::create(*s->mScenario, caps);
     if (!scene) {

@@ -100,8 +100,13 @@ public:
     int chapterIndex() const noexcept { return mChapter; }
     /** @brief The briefing's chapters in numbers (data spans, playback seconds, pauses). */
     const std::vector<anim::ChapterSpan>& chapterSpans() const noexcept { return mChapterSpans; }
-    /** @brief Budgets in effect (cache, uploads, prefetch) for `--stats`. */
-    std::vector<std::pair<std::string, double>> budgets() const { return mScene->budgets(); }
+    /** @brief Budgets in effect (cache, uploads, prefetch, memory) for `--stats`. */
+    std::vector<std::pair<std::string, double>> budgets() const;  // SessionBudgets.cpp
+    /** @brief Bytes held now against the memory budgets (kiosk /metrics, `--stats`). */
+    struct MemoryUsage {
+        std::uint64_t lutBytes = 0, mappingBytes = 0, fontAtlasBytes = 0;
+    };
+    MemoryUsage memoryUsage() const;
 
     /** @brief Update tiles for the view and draw terrain + overlays into the bound framebuffer. */
     FrameRecord drawFrame(const math::Camera& camera, double time, int width, int height);
@@ -124,6 +129,8 @@ private:
     std::vector<anim::ChapterSpan> computeChapterSpans() const;
     std::optional<math::Viewpoint> chapterViewpoint(double time) const;
     bool bindScaledTarget(int width, int height, int& outFbo);
+    /** @brief The text size drawn for `wantedPx` under the font atlas budget (0: no text). */
+    int budgetedFontPx(int wantedPx);
     /** @brief drawOverlays() once per wall overlay box (SessionWall.cpp). */
     void drawWallOverlays(double time, int width, int height);
 
@@ -131,6 +138,8 @@ private:
     std::unique_ptr<scene::TerrainScene> mScene;
     std::optional<render::OverlayRenderer> mOverlay;
     int mOverlayFontPx = 0;
+    std::uint64_t mFontAtlasBytes = 0;  ///< atlas of mOverlay (CPU copy + GPU texture)
+    int mFontWarnedPx = 0;              ///< wanted size the budget warning was logged for
     std::string mNotice;
     /// the legend title/ticks/patches below were made for this transfer function
     const config::TransferFunctionDef* mLegendFor = nullptr;

@@ -51,8 +51,9 @@ void Session::drawOverlays(double time, int width, int height) {
     if (fontPx != mOverlayFontPx) {
         mOverlayFontPx = fontPx;
         mOverlay.reset();
-        auto overlay =
-            render::OverlayRenderer::create(render::FontAtlas::defaultFontPath(), fontPx);
+        const int px = budgetedFontPx(fontPx);  // budgets.fontAtlasBytes
+        if (px <= 0) return;
+        auto overlay = render::OverlayRenderer::create(render::FontAtlas::defaultFontPath(), px);
         if (overlay)
             mOverlay.emplace(std::move(*overlay.value));
         else  // no text is no reason to leave the display dark

@@ -4,6 +4,8 @@
 #include "runtime/io/SqliteDb.h"
 #include "runtime/io/StoreTables.h"
 
+#include <algorithm>
+#include <atomic>
 #include <map>
 #include <system_error>
 
@@ -11,9 +13,15 @@ namespace kiosk::io {
 
 namespace {
 
+std::atomic<std::int64_t> gPageCacheBytes{StoreReader::kDefaultPageCacheBytes};
+std::atomic<int> gConnections{0};
+
 class SqliteStoreReader final : public StoreReader {
 public:
-    explicit SqliteStoreReader(SqliteDb db) : mDb(std::move(db)), mQueries(mDb) {}
+    explicit SqliteStoreReader(SqliteDb db) : mDb(std::move(db)), mQueries(mDb) { ++gConnections; }
+    ~SqliteStoreReader() override { --gConnections; }
+    SqliteStoreReader(const SqliteStoreReader&) = delete;
+    SqliteStoreReader& operator=(const SqliteStoreReader&) = delete;
 
     Diagnostics load(const std::filesystem::path& path);
 
@@ -88,8 +96,12 @@ Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
     }
     // A small page cache: tiles are blobs read once each (their pages would only duplicate
     // what the tile cache holds decoded); the b-tree pages that lead to them fit in 256 KiB.
-    // SQLite's default is 2 MiB per connection (docs/performance.md).
-    d.append(mDb.exec("PRAGMA cache_size=-256"));
+    // SQLite's default is 2 MiB per connection (docs/performance.md). A kiosk may set its own.
+    const std::int64_t cacheKiB = std::max<std::int64_t>(gPageCacheBytes.load() / 1024, 1);
+    d.append(mDb.exec("PRAGMA cache_size=-" + std::to_string(cacheKiB)));
+    if (auto c = mDb.queryInt("PRAGMA cache_size"))  // negative: KiB; positive: pages
+        mInfo.pageCacheBytes =
+            *c < 0 ? -*c * 1024 : *c * mDb.queryInt("PRAGMA page_size").value_or(4096);
     if (*appId != kGpkgApplicationId || !mDb.tableExists(kGridTable) ||
         !mDb.tableExists(kLayersTable)) {
         d.error("STORE_NOT_GEOKIOSK", mInfo.path, "",
@@ -220,6 +232,18 @@ Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
 }
 
 }  // namespace
+
+void StoreReader::setPageCacheBytes(std::int64_t bytes) {
+    gPageCacheBytes = bytes > 0 ? bytes : kDefaultPageCacheBytes;
+}
+
+std::int64_t StoreReader::pageCacheBytes() {
+    return gPageCacheBytes.load();
+}
+
+int StoreReader::openConnections() {
+    return gConnections.load();
+}
 
 Result<std::unique_ptr<StoreReader>> StoreReader::open(const std::filesystem::path& path) {
     Diagnostics d;

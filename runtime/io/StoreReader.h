@@ -1,11 +1,12 @@
 #pragma once
 
+#include "runtime/core/Result.h"
+#include "runtime/io/StoreTypes.h"
+
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
-
-#include "runtime/core/Result.h"
-#include "runtime/io/StoreTypes.h"
 
 namespace kiosk::io {
 
@@ -25,6 +26,17 @@ public:
     static Result<std::unique_ptr<StoreReader>> open(const std::filesystem::path& path);
 
     virtual const StoreInfo& info() const noexcept = 0;
+
+    /**
+     * @brief Page cache of each connection opened from now on (a kiosk's
+     * budgets.sqlitePageCacheBytes; default kDefaultPageCacheBytes). Any thread.
+     */
+    static void setPageCacheBytes(std::int64_t bytes);
+    static std::int64_t pageCacheBytes();
+    /** @brief Store connections open now (the page cache budget in use is this many times it). */
+    static int openConnections();
+    /** @brief Tiles are blobs read once each; the b-tree pages leading to them fit in 256 KiB. */
+    static constexpr std::int64_t kDefaultPageCacheBytes = 256 << 10;
 
     /** @brief Elevation posts of one tile, decoded to metres (scale/offset applied). */
     virtual Result<RasterTile> readElevation(const std::string& layer, const TileId& id) = 0;

@@ -92,6 +92,8 @@ struct StoreInfo {
     std::vector<LayerInfo> layers;
     std::vector<SequenceInfo> sequences;
     std::int64_t sizeBytes = 0;
+    /** @brief This connection's page cache limit as SQLite reports it (PRAGMA cache_size). */
+    std::int64_t pageCacheBytes = 0;
 
     const LayerInfo* findLayer(const std::string& name) const {
         for (const auto& l : layers)

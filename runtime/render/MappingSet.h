@@ -40,6 +40,15 @@ public:
     static constexpr int kLutWidth = kLutEntries + 2;
     static constexpr int kVec4PerMapping = 12;
     static constexpr int kHeaderVec4 = 5;
+    /** @brief Layer size TerrainScene asks for (clamped to GL_MAX_TEXTURE_SIZE). */
+    static constexpr int kSceneLayerSize = 512;
+
+    /** @brief Bytes one data layer holds: the float RGBA CPU copy plus the RGBA16F array layer. */
+    static constexpr std::uint64_t bytesPerLayer(int layerSize) {
+        return std::uint64_t(layerSize) * std::uint64_t(layerSize) * (16 + 8);
+    }
+    /** @brief Bytes one LUT row holds: the CPU copy plus the RGBA8 array layer. */
+    static constexpr std::uint64_t bytesPerLut() { return std::uint64_t(kLutWidth) * 4 * 2; }
 
     /**
      * @brief A GL blend factor (config::BlendFactor order, 0..9) as coefficients k of
@@ -79,6 +88,8 @@ public:
     int capacity() const noexcept { return mCapacity; }
     int layerCount() const noexcept { return int(mLayers.size()); }
     int lutCount() const noexcept { return int(mLuts.size()); }
+    std::uint64_t layerBytes() const noexcept { return mLayers.size() * bytesPerLayer(mLayerSize); }
+    std::uint64_t lutBytes() const noexcept { return mLuts.size() * bytesPerLut(); }
     std::uint64_t blockUploads() const noexcept { return mBlockUploads; }
 
 private:

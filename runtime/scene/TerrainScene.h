@@ -94,6 +94,14 @@ struct SceneCacheUsage {
     std::uint64_t gpuTextures = 0;  ///< uploaded imagery / raster textures
     std::uint64_t gpuMeshes = 0;    ///< uploaded terrain meshes
     std::uint32_t loaderQueue = 0;  ///< requests waiting for the loader thread
+    std::uint64_t cpuBudget = 0;    ///< budget of cpuTiles now
+    std::uint64_t gpuBudget = 0;    ///< budget of gpuTextures + gpuMeshes now
+};
+
+/** @brief Bytes of the per-scenario GPU/CPU resources outside the tile cache (kiosk budgets). */
+struct SceneMemoryUsage {
+    std::uint64_t lutBytes = 0;      ///< layer LUT textures and mapping LUT rows
+    std::uint64_t mappingBytes = 0;  ///< projective-mapping data arrays
 };
 
 /** @brief A transfer function ready for the GPU and the legend. */
@@ -175,6 +183,8 @@ public:
      * the sequences' prefetch bytes (TerrainSceneBudgets.cpp).
      */
     std::vector<std::pair<std::string, double>> budgets() const;
+    /** @brief LUT and mapping-array bytes this scene holds (TerrainSceneMappings.cpp). */
+    SceneMemoryUsage memoryUsage() const;
     /**
      * @brief Screen-space error thresholds for the next selections (the frame-rate governor's
      * lever); the loader's meshes do not depend on them. Ignored for the full-resolution reference.

@@ -15,7 +15,7 @@ namespace kiosk::scene {
 namespace {
 
 constexpr const char* kTag = "scene::mappings";
-constexpr int kLayerSize = 512;
+constexpr int kLayerSize = render::MappingSet::kSceneLayerSize;
 
 glm::u8vec4 toDn(const color::Rgba& c) {
     auto q = [](float v) { return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };

@@ -1,4 +1,6 @@
-// Cache bytes by kind for the kiosk's /metrics (split from TerrainScene.cpp: read-only view).
+// Cache and memory-budget bytes by kind for the kiosk's /metrics and --stats (split from
+// TerrainScene.cpp: read-only view).
+#include "runtime/render/MappingSet.h"
 #include "runtime/scene/TerrainScene.h"
 
 namespace kiosk::scene {
@@ -13,6 +15,18 @@ SceneCacheUsage TerrainScene::cacheUsage() const {
             u.gpuTextures += slot.bytes;
     }
     u.loaderQueue = mLoader ? mLoader->queued() : 0;
+    u.cpuBudget = mCache->budget().cpuBytes;
+    u.gpuBudget = mCache->budget().gpuBytes;
+    return u;
+}
+
+SceneMemoryUsage TerrainScene::memoryUsage() const {
+    SceneMemoryUsage u;
+    for (const SceneLut& lut : mLuts) u.lutBytes += std::uint64_t(lut.size) * 4;  // RGBA8, GPU
+    if (mMappingSet) {
+        u.lutBytes += mMappingSet->lutBytes();
+        u.mappingBytes = mMappingSet->layerBytes();
+    }
     return u;
 }
 

@@ -80,6 +80,21 @@ std::string renderMetrics(const ServiceSnapshot& s, const ProcessFigures& proces
     w.sample("", {{"kind", "gpu_textures"}}, double(s.cache.gpuTextures));
     w.sample("", {{"kind", "gpu_meshes"}}, double(s.cache.gpuMeshes));
     w.sample("", {{"kind", "sqlite_page_cache"}}, double(s.cache.sqlitePageCache));
+    w.sample("", {{"kind", "luts"}}, double(s.cache.luts));
+    w.sample("", {{"kind", "mappings"}}, double(s.cache.mappings));
+    w.sample("", {{"kind", "font_atlas"}}, double(s.cache.fontAtlas));
+    w.family("geokiosk_cache_budget_bytes",
+             "Byte budget of each cache (gpu: textures and meshes; sqlite_page_cache: per "
+             "connection times the connections open).",
+             T::Gauge);
+    w.sample("", {{"kind", "cpu_tiles"}}, double(s.budgets.cpuTiles));
+    w.sample("", {{"kind", "gpu"}}, double(s.budgets.gpu));
+    w.sample("", {{"kind", "sqlite_page_cache"}}, double(s.budgets.sqlitePageCache));
+    w.sample("", {{"kind", "luts"}}, double(s.budgets.luts));
+    w.sample("", {{"kind", "mappings"}}, double(s.budgets.mappings));
+    w.sample("", {{"kind", "font_atlas"}}, double(s.budgets.fontAtlas));
+    w.family("geokiosk_store_connections", "SQLite store connections open.", T::Gauge);
+    w.sample(double(s.budgets.storeConnections));
     w.family("geokiosk_loader_queue_depth", "Tile requests waiting for the loader thread.",
              T::Gauge);
     w.sample(double(s.loaderQueue));

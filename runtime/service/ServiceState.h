@@ -25,6 +25,20 @@ struct CacheBytes {
     std::uint64_t gpuTextures = 0;
     std::uint64_t gpuMeshes = 0;
     std::uint64_t sqlitePageCache = 0;
+    std::uint64_t luts = 0;       ///< transfer-function LUT textures
+    std::uint64_t mappings = 0;   ///< projective-mapping arrays
+    std::uint64_t fontAtlas = 0;  ///< overlay font atlas
+};
+
+/** @brief The budget of each cache (`kind` label of geokiosk_cache_budget_bytes). */
+struct CacheBudgetBytes {
+    std::uint64_t cpuTiles = 0;
+    std::uint64_t gpu = 0;              ///< GPU textures and meshes together
+    std::uint64_t sqlitePageCache = 0;  ///< per connection times the connections open
+    std::uint64_t luts = 0;
+    std::uint64_t mappings = 0;
+    std::uint64_t fontAtlas = 0;
+    int storeConnections = 0;
 };
 
 /** @brief Plain data describing the running kiosk after its latest frame. */
@@ -36,6 +50,7 @@ struct ServiceSnapshot {
     std::uint64_t heldFrames = 0;             ///< frames a sequence held an older step
     std::uint64_t sequenceMissingFrames = 0;  ///< frames drawn with sequence tiles missing
     CacheBytes cache;
+    CacheBudgetBytes budgets;
     std::uint32_t loaderQueue = 0;
     std::vector<LayerGauge> layers;
     std::uint64_t reloads = 0;

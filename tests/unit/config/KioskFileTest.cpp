@@ -87,6 +87,44 @@ TEST_F(KioskFileTest, ErrorsNameFileLineColumnAndPointer) {
     EXPECT_TRUE(k.diagnostics.has("KIOSK_UNKNOWN_PROPERTY"));
 }
 
+TEST_F(KioskFileTest, MemoryBudgetsKeepWhereTheyWereSet) {
+    const auto p = write(R"({
+  "playlist": [ { "scenario": "a.json" } ],
+  "budgets": { "lutBytes": 16384, "mappingBytes": 8388608,
+               "fontAtlasBytes": 65536, "sqlitePageCacheBytes": 131072 }
+})");
+    auto k = readKioskFile(p);
+    ASSERT_TRUE(k) << k.diagnostics.format();
+    const MemoryBudgets& m = k->memory;
+    EXPECT_EQ(m.luts.bytes, 16384);
+    EXPECT_EQ(m.luts.file, p.string());
+    EXPECT_EQ(m.luts.line, 3);
+    EXPECT_EQ(m.luts.column, 28);
+    EXPECT_EQ(m.luts.pointer, "/budgets/lutBytes");
+    EXPECT_EQ(m.mappings.bytes, 8388608);
+    EXPECT_EQ(m.fontAtlas.bytes, 65536);
+    EXPECT_EQ(m.fontAtlas.line, 4);
+    EXPECT_EQ(m.sqlitePageCache.bytes, 131072);
+    EXPECT_EQ(m.sqlitePageCache.pointer, "/budgets/sqlitePageCacheBytes");
+
+    auto unset = readKioskFile(write(R"({ "playlist": [ { "scenario": "a.json" } ] })"));
+    ASSERT_TRUE(unset);
+    EXPECT_FALSE(unset->memory.luts.set());
+    EXPECT_FALSE(unset->memory.sqlitePageCache.set());
+
+    auto small = readKioskFile(write(R"({ "playlist": [ { "scenario": "a.json" } ],
+  "budgets": { "lutBytes": 100, "sqlitePageCacheBytes": 1.5 } })"));
+    ASSERT_FALSE(small);
+    const std::string text = small.diagnostics.format();
+    EXPECT_NE(text.find(":2:28: /budgets/lutBytes: expected a whole number of bytes from 4096"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("/budgets/sqlitePageCacheBytes: expected a whole number of bytes from "
+                        "65536 to 1 TiB"),
+              std::string::npos)
+        << text;
+}
+
 TEST_F(KioskFileTest, ParseErrorsAndMissingPlaylist) {
     auto bad = readKioskFile(write("{ \"playlist\": [ }"));
     ASSERT_FALSE(bad);
