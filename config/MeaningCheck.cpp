@@ -1,5 +1,6 @@
 #include "config/MeaningCheck.h"
 
+#include "config/StoreGrids.h"
 #include "runtime/core/Strings.h"
 #include "runtime/core/Units.h"
 
@@ -189,7 +190,34 @@ private:
                          DataRange{l->minValue, l->maxValue, l->units, "layer " + quote(l->name)});
     }
 
+    // A second store is served by the terrain's tile ids: same CRS and tile grid, or refused.
+    bool sharesTerrainGrid(const std::string& ptr, const std::string& storeId,
+                           const io::StoreInfo& info) {
+        if (storeId == mS.terrain.store) return true;
+        const auto* terrain = store(mS.terrain.store);
+        if (!terrain) return true;  // its own error says why
+        if (!sameCrs(terrain->grid, info.grid)) {
+            error("SCENARIO_STORE_CRS", ptr,
+                  "store " + quote(storeId) + " is in " + crsText(info.grid) +
+                      ", the terrain's store " + quote(mS.terrain.store) + " in " +
+                      crsText(terrain->grid) + "; a layer's store must share the terrain's CRS")
+                .hint = "import it again with geokiosk-import --to-crs set to the terrain's CRS";
+            return false;
+        }
+        if (const std::string why = tileGridDifference(terrain->grid, info.grid); !why.empty()) {
+            error("SCENARIO_STORE_GRID", ptr,
+                  "store " + quote(storeId) + " has the terrain's CRS but not its tile grid (" +
+                      why + "); a layer's store must share the terrain store's tile grid");
+            return false;
+        }
+        return true;
+    }
+
     void layer(const Layer& l) {
+        // (Mappings place their data by their own rectangle: any store will do for them.)
+        if (const auto* info = store(l.source.store);
+            info && !sharesTerrainGrid(l.pointer + "/source/store", l.source.store, *info))
+            return;
         source(l.pointer + "/source", l.source, l.kind == LayerKind::Sequence, l.transfer,
                l.pointer + "/transfer", l.kind);
     }

@@ -25,7 +25,9 @@ using StoreLookup = std::function<const io::StoreInfo*(const std::string& storeI
  * SCENARIO_UNKNOWN_SEQUENCE (with did-you-mean over the store's names), SCENARIO_LAYER_KIND
  * (e.g. a thematic layer on an elevation table), SCENARIO_UNITS (transfer function units differ
  * from the data's), SCENARIO_TIME_RANGE (clock and sequence do not overlap at all),
- * SCENARIO_DOMAIN (data range entirely outside the transfer function's domain).
+ * SCENARIO_DOMAIN (data range entirely outside the transfer function's domain),
+ * SCENARIO_STORE_CRS / SCENARIO_STORE_GRID (a layer's store differs from the terrain store in
+ * CRS or tile grid; the pointer names the layer's "source/store").
  * Warnings: SCENARIO_TIME_RANGE / SCENARIO_DOMAIN when the overlap is only partial.
  * Messages carry file:line:col of the referencing JSON value. Any thread; never throws.
  */

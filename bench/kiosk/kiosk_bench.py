@@ -8,11 +8,13 @@
   restart  kill -9 of a running kiosk, then process start -> READY=1 (sd_notify), median of 5;
            same-run baseline: `geokiosk --version` (exec + shared libraries), median of 5; the
            first, cold start is reported too.
-  scrape   frame time of the demo flight with /metrics scraped 50 times a second vs not scraped,
-           alternating 4 phases each (same run). Goal: change < 2 %.
+  scrape   frame time of the demo flight with /metrics scraped 50 times a second vs not scraped:
+           PAIRS interleaved phases of SECONDS each (ABBA blocks, same run), median of the per-pair
+           ratios of the render thread's CPU time per frame and of wall time per frame.
+           Goal: change < 2 %.
 
 usage: kiosk_bench.py soak|restart|scrape GEOKIOSK REPO_ROOT [--frames N] [--reload N]
-       [--bound-mb MB] [--seconds S]"""
+       [--bound-mb MB] [--seconds S] [--pairs N]"""
 import argparse
 import json
 import os
@@ -145,39 +147,102 @@ def restart(a, tmp):
     return 0
 
 
+def thread_cpu_ns(pid, tid):
+    """CPU time of one thread in nanoseconds (schedstat: time on CPU, ns resolution)."""
+    with open("/proc/%d/task/%d/schedstat" % (pid, tid)) as f:
+        return int(f.read().split()[0])
+
+
+def process_threads_cpu_ns(pid, skip):
+    """CPU time of every thread of `pid` except `skip` (the HTTP server, loader...)."""
+    total = 0
+    for tid in os.listdir("/proc/%d/task" % pid):
+        if int(tid) != skip:
+            try:
+                total += thread_cpu_ns(pid, int(tid))
+            except OSError:
+                pass  # a thread that ended
+    return total
+
+
 def scrape_bench(a, tmp):
-    k = Kiosk(a.geokiosk, [DEMO, "--display", "headless", "--size", "640x360", "--listen",
-                           "127.0.0.1:0"], gl_env(), os.path.join(tmp, "log"))
+    """Interleaved A/B: short phases with and without 50 Hz scraping alternate (ABBA, so a drift
+    of the machine's load cancels within each block); each adjacent pair gives a ratio and the
+    figure is the median of those ratios. Two measures: wall time per frame (what a viewer
+    sees; moved by whatever else the shared machine runs) and the CPU time of the render thread
+    per frame (/proc schedstat of the main thread, llvmpipe rasterising on it: LP_NUM_THREADS=0),
+    which is what scraping could add to the frame loop: the snapshot copy and the mutex."""
+    env = dict(gl_env(), LP_NUM_THREADS="0")
+    k = Kiosk(a.geokiosk, [DEMO, "--display", "headless", "--size", a.size, "--listen",
+                           "127.0.0.1:0"], env, os.path.join(tmp, "log"))
     k.wait_port()
+    pid = k.proc.pid
     time.sleep(3)  # warm-up: tiles of the tour start loading
-    phases = {"none": [], "scrape_50hz": []}
-    scrapes = 0
-    for rnd in range(4):
-        for mode in ("none", "scrape_50hz"):
-            m0 = scrape(k.port)
-            stop = time.monotonic() + a.seconds
-            while time.monotonic() < stop:
-                if mode == "scrape_50hz":
-                    scrape(k.port)
-                    scrapes += 1
-                    time.sleep(0.02)
-                else:
-                    time.sleep(0.05)
-            m1 = scrape(k.port)
-            n = m1["geokiosk_frame_time_ms_count"] - m0["geokiosk_frame_time_ms_count"]
-            ms = (m1["geokiosk_frame_time_ms_sum"] - m0["geokiosk_frame_time_ms_sum"]) / n
-            phases[mode].append(ms)
+    phases = {"none": [], "scrape_50hz": []}  # (wall ms/frame, render CPU ms/frame)
+    other_cpu = {"none": 0, "scrape_50hz": 0}
+    scrapes = {"none": 0, "scrape_50hz": 0}
+    order = []
+    for rnd in range(a.pairs // 2):
+        order += ["none", "scrape_50hz", "scrape_50hz", "none"] if rnd % 2 == 0 else \
+                 ["scrape_50hz", "none", "none", "scrape_50hz"]
+    seconds = {"none": 0.0, "scrape_50hz": 0.0}
+    measured = []  # (mode, (wall, cpu)) in phase order
+    for mode in order:
+        m0 = scrape(k.port)
+        c0, o0, t0 = thread_cpu_ns(pid, pid), process_threads_cpu_ns(pid, pid), time.monotonic()
+        stop = t0 + a.seconds
+        i = 0
+        while time.monotonic() < stop:
+            if mode == "scrape_50hz":
+                scrape(k.port)
+                scrapes[mode] += 1
+            i += 1
+            # 50 Hz on a schedule (a slow round trip does not lower the rate), idle otherwise.
+            time.sleep(max(0.0, t0 + i * 0.02 - time.monotonic()))
+        c1, o1, t1 = thread_cpu_ns(pid, pid), process_threads_cpu_ns(pid, pid), time.monotonic()
+        m1 = scrape(k.port)
+        n = m1["geokiosk_frames_total"] - m0["geokiosk_frames_total"]
+        wall = (m1["geokiosk_frame_time_ms_sum"] - m0["geokiosk_frame_time_ms_sum"]) / n
+        phases[mode].append((wall, (c1 - c0) / 1e6 / n))
+        measured.append((mode, phases[mode][-1]))
+        other_cpu[mode] += o1 - o0
+        seconds[mode] += t1 - t0
     k.stop()
-    base = statistics.mean(phases["none"])
-    with_scrape = statistics.mean(phases["scrape_50hz"])
-    print(json.dumps({"benchmark": "kiosk_scrape", "size": "640x360",
-                      "phase_seconds": a.seconds, "phases_each": 4,
-                      "baseline_frame_ms_no_scrape": round(base, 3),
-                      "frame_ms_scraped_50hz": round(with_scrape, 3),
-                      "change_percent": round(100 * (with_scrape - base) / base, 2),
-                      "scrapes": scrapes,
-                      "per_phase_ms": {k2: [round(v, 3) for v in vals]
-                                       for k2, vals in phases.items()},
+
+    def ratios(index):
+        # ABBA order: phases 2j and 2j+1 are adjacent and of opposite modes.
+        out = []
+        for j in range(0, len(measured) - 1, 2):
+            (ma, va), (mb, vb) = measured[j], measured[j + 1]
+            none, with_s = (va, vb) if ma == "none" else (vb, va)
+            out.append(with_s[index] / none[index])
+        return out
+
+    wall_r, cpu_r = ratios(0), ratios(1)
+
+    def q(vals, p):
+        return statistics.quantiles(vals, n=4)[p] if len(vals) >= 4 else None
+
+    def summary(index, vals):
+        return {"baseline_no_scrape_median":
+                round(statistics.median(v[index] for v in phases["none"]), 3),
+                "scraped_50hz_median":
+                round(statistics.median(v[index] for v in phases["scrape_50hz"]), 3),
+                "median_change_percent": round(100 * (statistics.median(vals) - 1), 2),
+                "q1_change_percent": round(100 * (q(vals, 0) - 1), 2),
+                "q3_change_percent": round(100 * (q(vals, 2) - 1), 2),
+                "pairs": len(vals)}
+
+    print(json.dumps({"benchmark": "kiosk_scrape", "size": a.size,
+                      "phase_seconds": a.seconds, "phases_each": len(order) // 2,
+                      "order": "ABBA blocks, A = no scraping (the same-run baseline)",
+                      "render_thread_cpu_ms_per_frame": summary(1, cpu_r),
+                      "wall_ms_per_frame": summary(0, wall_r),
+                      "scrapes_per_second": round(scrapes["scrape_50hz"] /
+                                                  seconds["scrape_50hz"], 1),
+                      "other_threads_cpu_percent": {
+                          m: round(100 * other_cpu[m] / 1e9 / seconds[m], 1) for m in other_cpu},
+                      "load_average": os.getloadavg()[0],
                       "goal_change_percent": 2.0}))
     return 0
 
@@ -190,7 +255,9 @@ def main():
     p.add_argument("--frames", type=int, default=1000000)
     p.add_argument("--reload", type=int, default=10000)
     p.add_argument("--bound-mb", type=float)
-    p.add_argument("--seconds", type=float, default=5.0)
+    p.add_argument("--seconds", type=float, default=1.0)
+    p.add_argument("--pairs", type=int, default=120, help="scrape: A/B phase pairs (ABBA)")
+    p.add_argument("--size", default="320x180", help="scrape: output size")
     p.add_argument("--budget-mb", type=int, default=16)
     a = p.parse_args()
     a.geokiosk = os.path.abspath(a.geokiosk)

@@ -2,6 +2,7 @@
 
 #include "config/DataUnits.h"
 #include "config/ScenarioReader.h"
+#include "runtime/anim/KeyedTrack.h"
 #include "runtime/app/MemoryBudgets.h"
 #include "runtime/app/ScenarioStores.h"
 #include "runtime/app/SolarLighting.h"
@@ -173,17 +174,15 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     double az = sc.lighting.sunAzimuth, alt = sc.lighting.sunAltitude;
     if (!sc.lighting.keys.empty()) {
         // Piecewise-linear sun between keys (a moving sun over the scenario's clock).
-        const auto& keys = sc.lighting.keys;
-        std::size_t i = 0;
-        while (i + 1 < keys.size() && keys[i + 1].time.resolve(mStart) <= time) ++i;
-        az = keys[i].sunAzimuth;
-        alt = keys[i].sunAltitude;
-        if (i + 1 < keys.size()) {
-            const double t0 = keys[i].time.resolve(mStart), t1 = keys[i + 1].time.resolve(mStart);
-            const double a = t1 > t0 ? std::clamp((time - t0) / (t1 - t0), 0.0, 1.0) : 0.0;
-            az += a * (keys[i + 1].sunAzimuth - az);
-            alt += a * (keys[i + 1].sunAltitude - alt);
-        }
+        const auto sunAt = anim::keyedTrack(
+            glm::dvec2(az, alt), sc.lighting.keys, time,
+            [this](const config::LightingKey& k) { return k.time.resolve(mStart); },
+            [](glm::dvec2& v, const config::LightingKey& k) {
+                v = {k.sunAzimuth, k.sunAltitude};
+            },
+            [](const glm::dvec2& a, const glm::dvec2& b, double t) { return glm::mix(a, b, t); });
+        az = sunAt.x;
+        alt = sunAt.y;
     }
     if (auto sun = solarSun(sc.lighting, mScene->storeInfo(), sc.terrain.elevation, time)) {
         az = sun->azimuthDeg;  // lighting.solar: where the sun is at the data time

@@ -93,23 +93,34 @@ bool StoreTileLoader::loadStoredMesh(const LayerBinding& layer, const TileId& id
 
 StoreTileLoader::StoreTileLoader(StoreOpener opener, std::vector<LayerBinding> layers,
                                  terrain::TerrainOptions options)
-    : mOpener(std::move(opener)), mLayers(std::move(layers)), mOptions(options) {}
+    : StoreTileLoader(std::vector<StoreOpener>{std::move(opener)}, std::move(layers), options) {}
+
+StoreTileLoader::StoreTileLoader(std::vector<StoreOpener> openers, std::vector<LayerBinding> layers,
+                                 terrain::TerrainOptions options)
+    : mOpeners(std::move(openers)), mLayers(std::move(layers)), mOptions(options) {}
 
 void StoreTileLoader::threadStarted() {
-    if (!mOpener) {
-        mOpenDiagnostics.error("LOADER_NO_STORE", "", "", "no store opener configured");
-        return;
+    mReaders.clear();
+    mOpenDiagnostics.assign(mOpeners.size(), Diagnostics{});
+    for (std::size_t i = 0; i < mOpeners.size(); ++i) {
+        Diagnostics& d = mOpenDiagnostics[i];
+        mReaders.emplace_back();
+        if (!mOpeners[i]) {
+            d.error("LOADER_NO_STORE", "", "", "no store opener configured");
+            continue;
+        }
+        Result<std::unique_ptr<io::StoreReader>> r = mOpeners[i]();
+        d = r.diagnostics;
+        if (r.ok() && *r)
+            mReaders.back() = std::move(*r.value);
+        else if (!d.hasErrors())
+            d.error("LOADER_NO_STORE", "", "", "store opener returned no reader");
     }
-    Result<std::unique_ptr<io::StoreReader>> r = mOpener();
-    mOpenDiagnostics = r.diagnostics;
-    if (r.ok() && *r)
-        mReader = std::move(*r.value);
-    else if (!mOpenDiagnostics.hasErrors())
-        mOpenDiagnostics.error("LOADER_NO_STORE", "", "", "store opener returned no reader");
 }
 
 void StoreTileLoader::threadStopping() {
-    mReader.reset();
+    mReader = nullptr;
+    mReaders.clear();
 }
 
 TilePayload StoreTileLoader::load(const LoadRequest& request) {
@@ -117,9 +128,19 @@ TilePayload StoreTileLoader::load(const LoadRequest& request) {
         std::this_thread::sleep_for(std::chrono::duration<double>(mDelaySeconds));
     TilePayload p;
     p.key = request.key;
+    // The store holding the request's layer (an unknown layer is reported by the first store).
+    const std::size_t store = request.key.layer < mLayers.size()
+                                  ? std::size_t(std::max(0, mLayers[request.key.layer].store))
+                                  : 0;
+    mReader = store < mReaders.size() ? mReaders[store].get() : nullptr;
     if (!mReader) {
         p.status = TilePayload::Status::Failed;
-        p.diagnostics.append(mOpenDiagnostics);
+        if (store < mOpenDiagnostics.size())
+            p.diagnostics.append(mOpenDiagnostics[store]);
+        else
+            p.diagnostics.error("LOADER_NO_STORE", "", "",
+                                "layer names store " + std::to_string(store) + " of " +
+                                    std::to_string(mOpeners.size()));
         return p;
     }
     if (request.key.layer >= mLayers.size()) {

@@ -26,6 +26,7 @@ struct LayerBinding {
      */
     bool arrivalThresholds = false;
     std::optional<float> nodataAs = std::nullopt;  ///< arrival: the class nodata counts as
+    int store = 0;  ///< which of the loader's stores holds the table (index into its openers)
 };
 
 /** @brief Opens this thread's own StoreReader, e.g. `[p] { return io::StoreReader::open(p); }`. */
@@ -46,6 +47,13 @@ class StoreTileLoader final : public LoadFunction {
 public:
     StoreTileLoader(StoreOpener opener, std::vector<LayerBinding> layers,
                     terrain::TerrainOptions options);
+    /**
+     * @brief Several stores on one loader thread (layers from other stores of the same tile
+     * grid): LayerBinding::store indexes `openers`; one reader each, opened on the thread. A
+     * store that cannot be opened fails only the requests for its layers.
+     */
+    StoreTileLoader(std::vector<StoreOpener> openers, std::vector<LayerBinding> layers,
+                    terrain::TerrainOptions options);
 
     void threadStarted() override;
     terrain::TilePayload load(const LoadRequest& request) override;
@@ -63,11 +71,12 @@ private:
     bool loadStoredMesh(const LayerBinding& layer, const TileId& id, int tier,
                         terrain::TilePayload& p);
 
-    StoreOpener mOpener;
+    std::vector<StoreOpener> mOpeners;
     std::vector<LayerBinding> mLayers;
     terrain::TerrainOptions mOptions;
-    std::unique_ptr<io::StoreReader> mReader;
-    Diagnostics mOpenDiagnostics;
+    std::vector<std::unique_ptr<io::StoreReader>> mReaders;  ///< per opener; null: failed
+    std::vector<Diagnostics> mOpenDiagnostics;               ///< per opener
+    io::StoreReader* mReader = nullptr;  ///< the store of the request being loaded
     terrain::RtinMesher mMesher;
     terrain::StoredMeshBuilder mStoredMeshes;
     io::TileMeshRow mMeshRow;  // decoded stored mesh, buffers reused from tile to tile

@@ -1,5 +1,7 @@
 #include "runtime/mapping/MappingModel.h"
 
+#include "runtime/anim/KeyedTrack.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -61,34 +63,27 @@ MappingState evaluate(const config::ProjectiveMapping& m, double time, double cl
     s.colorMatrix = toGlm(m.colorMatrix);
     s.opacity = m.opacity;
     s.enabled = m.enabled;
-    bool havePrev = false;
-    double prevTime = 0.0;
-    for (const auto& key : m.keys) {
-        const double kt = key.time.resolve(clockStart);
-        MappingState k = s;  // a key without a field keeps the value reached so far
-        if (key.origin) k.origin = toVec(*key.origin);
-        if (key.u) k.u = toVec(*key.u);
-        if (key.v) k.v = toVec(*key.v);
-        if (key.textureMatrix) k.textureMatrix = toGlm(*key.textureMatrix);
-        if (key.colorMatrix) k.colorMatrix = toGlm(*key.colorMatrix);
-        if (key.opacity) k.opacity = *key.opacity;
-        if (kt <= time || !havePrev) {
-            s = k;
-            havePrev = true;
-            prevTime = kt;
-            continue;
-        }
-        const double a =
-            kt > prevTime ? std::clamp((time - prevTime) / (kt - prevTime), 0.0, 1.0) : 1.0;
-        s.origin = glm::mix(s.origin, k.origin, a);
-        s.u = mixAxis(s.u, k.u, a);
-        s.v = mixAxis(s.v, k.v, a);
-        s.textureMatrix = mixMatrix(s.textureMatrix, k.textureMatrix, a);
-        s.colorMatrix = mixMatrix(s.colorMatrix, k.colorMatrix, a);
-        s.opacity = glm::mix(s.opacity, k.opacity, a);
-        return s;
-    }
-    return s;
+    return anim::keyedTrack(
+        s, m.keys, time,
+        [clockStart](const config::MappingKey& k) { return k.time.resolve(clockStart); },
+        [](MappingState& k, const config::MappingKey& key) {
+            // A key without a field keeps the value reached so far.
+            if (key.origin) k.origin = toVec(*key.origin);
+            if (key.u) k.u = toVec(*key.u);
+            if (key.v) k.v = toVec(*key.v);
+            if (key.textureMatrix) k.textureMatrix = toGlm(*key.textureMatrix);
+            if (key.colorMatrix) k.colorMatrix = toGlm(*key.colorMatrix);
+            if (key.opacity) k.opacity = *key.opacity;
+        },
+        [](MappingState a, const MappingState& b, double t) {
+            a.origin = glm::mix(a.origin, b.origin, t);
+            a.u = mixAxis(a.u, b.u, t);
+            a.v = mixAxis(a.v, b.v, t);
+            a.textureMatrix = mixMatrix(a.textureMatrix, b.textureMatrix, t);
+            a.colorMatrix = mixMatrix(a.colorMatrix, b.colorMatrix, t);
+            a.opacity = glm::mix(a.opacity, b.opacity, t);
+            return a;
+        });
 }
 
 glm::dvec2 TextureTransform::rect(const glm::dvec3& p) const {

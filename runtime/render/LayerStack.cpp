@@ -1,10 +1,11 @@
 #include "runtime/render/LayerStack.h"
 
-#include <sstream>
-
+#include "layers/Registry.h"
 #include "runtime/gl/ShaderLibrary.h"
-#include "runtime/render/NormalShading.h"
 #include "runtime/render/ProceduralDetailGlsl.h"
+
+#include <set>
+#include <sstream>
 
 namespace kiosk::render {
 namespace {
@@ -20,6 +21,7 @@ in vec2 vScenePos;
 
 uniform vec3 uLightDir;
 uniform float uAmbient;
+uniform float uVerticalScale;     // shared with the vertex shader (normal maps, detail)
 uniform float uGeometryLighting;  // 1: Lambert from mesh normals; 0: shading comes from layers
 uniform vec4 uBaseColor;
 uniform sampler2D uElevLut;
@@ -42,13 +44,28 @@ float lensMask(vec4 lens, vec2 rotation, float softEdge, vec2 p) {
 }
 )";
 
+const char* builtinKindName(LayerKind k) {
+    // Names only (the kinds are in layers/): descriptions built without a scene use them.
+    static constexpr const char* kNames[] = {"thematic", "luminance", "topographic", "visibility",
+                                             "data",     "sequence",  "normals"};
+    return kNames[static_cast<int>(k)];
+}
+
 }  // namespace
+
+std::shared_ptr<const layers::LayerShader> shaderOf(const CompositeLayer& l) {
+    if (l.shader) return l.shader;
+    const layers::Kind* kind = layers::registry().find(builtinKindName(l.kind));
+    layers::SourcePlan plan;
+    plan.source = l.fromElevation ? layers::SourceKind::MeshElevation : layers::SourceKind::Imagery;
+    plan.framePair = l.kind == LayerKind::Sequence;
+    plan.thresholds = l.arrival;
+    return kind->shader(plan);
+}
 
 int lutIndexOf(const CompositeProgramDesc& desc, int layer) {
     if (layer < 0 || layer >= int(desc.layers.size())) return -1;
-    const auto scalar = [](const CompositeLayer& l) {
-        return l.kind == LayerKind::Data || l.kind == LayerKind::Sequence;
-    };
+    const auto scalar = [](const CompositeLayer& l) { return shaderOf(l)->usesLut(); };
     if (!scalar(desc.layers[std::size_t(layer)])) return -1;
     int rank = 0;
     for (int i = 0; i < layer; ++i) rank += scalar(desc.layers[std::size_t(i)]) ? 1 : 0;
@@ -57,8 +74,7 @@ int lutIndexOf(const CompositeProgramDesc& desc, int layer) {
 
 int textureUnitsNeeded(const CompositeProgramDesc& desc) {
     int units = 1 + desc.lutCount;  // elevation LUT + transfer-function LUTs
-    for (const auto& l : desc.layers) units += l.kind == LayerKind::Sequence ? 2 : 1;
-    for (const auto& l : desc.layers) units += l.kind == LayerKind::Sequence && l.arrival ? 1 : 0;
+    for (const auto& l : desc.layers) units += shaderOf(l)->textures();
     if (desc.mappingCapacity > 0) units += 2;  // mapping data + LUT arrays
     return units;
 }
@@ -100,22 +116,22 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
         if (!text) return text.diagnostics;
         s << *text << "\n";
     }
-    for (const auto& l : desc.layers)
-        if (l.kind == LayerKind::Normals) {
-            s << NormalShading::glslHelpers();
-            break;
-        }
+    // Each kind's piece, resolved once; helpers shared by several layers of a kind go in once.
+    std::vector<std::shared_ptr<const layers::LayerShader>> pieces;
+    for (const auto& l : desc.layers) pieces.push_back(shaderOf(l));
+    std::set<const char*> helpersDone;
+    for (const auto& piece : pieces)
+        if (const char* h = piece->helpers(); h && helpersDone.insert(h).second) s << h;
     if (desc.mappingCapacity > 0) {
         auto text = gl::ShaderLibrary::source("common/mappings.glsl");
         if (!text) return text.diagnostics;
         s << "#define KIOSK_MAX_MAPPINGS " << desc.mappingCapacity << "\n" << *text << "\n";
     }
     for (int i = 0; i < n; ++i) {
+        const int textures = pieces[std::size_t(i)]->textures();
         s << "uniform sampler2D uLayer" << i << ";\n";
-        if (desc.layers[std::size_t(i)].kind == LayerKind::Sequence)
-            s << "uniform sampler2D uLayerB" << i << ";\n";
-        if (desc.layers[std::size_t(i)].kind == LayerKind::Sequence &&
-            desc.layers[std::size_t(i)].arrival)
+        if (textures >= 2) s << "uniform sampler2D uLayerB" << i << ";\n";
+        if (textures >= 3)
             s << "uniform sampler2D uLayerT" << i << ";\nuniform vec4 uLayerRectT" << i << ";\n";
         s << "uniform vec4 uLayerRect" << i << ";\nuniform vec4 uLayerParam" << i << ";\n";
     }
@@ -148,76 +164,17 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
         if ((desc.proceduralDetail || desc.detailHole) && o == dataFirst)
             s << ProceduralDetailGlsl::afterDataSamples(desc);
         const int i = order[o];
-        const auto& l = desc.layers[std::size_t(i)];
         s << "    vec2 uv" << i << " = (vScenePos - uLayerRect" << i << ".xy) * uLayerRect" << i
           << ".zw;\n";
-        switch (l.kind) {
-            case LayerKind::Thematic:
-                s << "    vec4 L" << i << " = texture(uLayer" << i << ", uv" << i << ");\n";
-                break;
-            case LayerKind::Luminance:
-                s << "    vec4 L" << i << " = vec4(vec3(2.0 * texture(uLayer" << i << ", uv" << i
-                  << ").r), 1.0);\n";
-                break;
-            case LayerKind::Topographic:
-                s << "    vec4 L" << i << " = texture(uLayer" << i << ", uv" << i
-                  << ").rrra;\n";
-                break;
-            case LayerKind::Normals:
-                NormalShading::appendLayerSample(s, i);
-                break;
-            case LayerKind::Visibility:
-                s << "    vec4 L" << i << " = vec4(1.0, 1.0, 1.0, texture(uLayer" << i << ", uv"
-                  << i << ").r);\n";
-                break;
-            case LayerKind::Data:
-            case LayerKind::Sequence: {
-                // RG = (value premultiplied by validity, validity): filtering then dividing
-                // gives the mean of valid neighbours, so nodata never bleeds into values.
-                if (l.fromElevation)
-                    s << "    vec2 d" << i << " = vec2(vElevation, 1.0);\n";
-                else
-                    s << "    vec2 d" << i << " = texture(uLayer" << i << ", uv" << i << ").rg;\n";
-                if (l.kind == LayerKind::Sequence) {
-                    // Interpolate DATA values, then colour (issue 6): never blend two colours.
-                    s << "    vec2 e" << i << " = texture(uLayerB" << i << ", uv" << i << ").rg;\n";
-                    if (l.arrival) {
-                        // Arrival: each pixel switches class when alpha passes its threshold.
-                        s << "    vec2 t" << i << " = texture(uLayerT" << i
-                          << ", (vScenePos - uLayerRectT" << i << ".xy) * uLayerRectT" << i << ".zw).rg;\n    d" << i
-                          << " = uLayerParam" << i << ".y >= t" << i << ".r / max(t" << i
-                          << ".g, 1e-6) ? e" << i << " : d" << i << ";\n";
-                    } else {
-                        s << "    d" << i << " = mix(d" << i << ", e" << i << ", uLayerParam" << i
-                          << ".y);\n";
-                    }
-                }
-                s << "    vec4 L" << i << " = vec4(0.0);\n"
-                  << "    {\n        float v = d" << i << ".r / max(d" << i << ".g, 1e-6);\n";
-                // The LUT index is a per-layer constant baked in by the generator: llvmpipe
-                // runs both sides of a branch under a mask, so a run-time `if (k == ...)` chain
-                // sampled every LUT for every data layer (docs/terrain.md §6).
-                if (const int k = lutIndexOf(desc, i); k >= 0 && k < desc.lutCount) {
-                    s << "        {\n"
-                      << "            vec4 c = texture(uLut" << k << ", vec2(lutCoord(v, uLutDomain"
-                      << k << ", uLutSize" << k << "), 0.5));\n"
-                      << "            if (v < uLutDomain" << k << ".x && uLutBelow" << k
-                      << ".a >= 0.0) c = uLutBelow" << k << ";\n"
-                      << "            if (v > uLutDomain" << k << ".y && uLutAbove" << k
-                      << ".a >= 0.0) c = uLutAbove" << k << ";\n"
-                      << "            L" << i << " = d" << i << ".g >= 0.5 ? c : uLutNodata" << k
-                      << ";\n        }\n";
-                }
-                s << "    }\n";
-                break;
-            }
-        }
+        // The kind defines L<i>; a LUT index past lutCount leaves the layer transparent.
+        const int k = lutIndexOf(desc, i);
+        pieces[std::size_t(i)]->sample(s, i, k < desc.lutCount ? k : -1);
     }
     if ((desc.proceduralDetail || desc.detailHole) && dataFirst == order.size())
         s << ProceduralDetailGlsl::afterDataSamples(desc);
     for (int i = 0; i < n; ++i) {
         const auto& l = desc.layers[std::size_t(i)];
-        if (l.kind == LayerKind::Visibility && l.op == LayerOp::Over) continue;  // mask source only
+        if (pieces[std::size_t(i)]->maskOnly() && l.op == LayerOp::Over) continue;  // mask source
         s << "    {\n        float w = uLayerParam" << i << ".x * uLayerParam" << i << ".w;\n";
         for (std::size_t j = 0; j < desc.lenses.size(); ++j) {
             const auto& lens = desc.lenses[j];

@@ -1,22 +1,19 @@
 #pragma once
 
+#include "layers/LayerShader.h"
+#include "runtime/core/Result.h"
+
+#include <memory>
 #include <string>
 #include <vector>
-
-#include "runtime/core/Result.h"
 
 namespace kiosk::render {
 
 /**
- * @brief What a layer contributes to the terrain's colour (Döllner 2000, §3-4 texture layers).
- * - Thematic: an RGBA image (imagery, land use), applied by its operation.
- * - Luminance: a grey texture that brightens/darkens what is below (L * 2 around 0.5 = neutral).
- * - Topographic: a shading texture (hillshade) that modulates what is below.
- * - Visibility: an alpha mask; contributes no colour, used by Blend operations of other layers.
- * - Data: a scalar raster (RG16F: value, validity) coloured by a transfer-function LUT.
- * - Sequence: two scalar frames interpolated in data space at alpha, then the LUT.
- * - Normals: an encoded normal map lit by the run-time sun (uLightDir), with hybrid shading
- *   from the mesh's normals where its texels are magnified (runtime/render/NormalShading.h).
+ * @brief The built-in kinds by name, for descriptions built without a scene (tests, tools):
+ * a layer whose `shader` is empty takes the registered kind of this name (layers/Registry.cpp).
+ * What each kind samples lives in its folder under layers/; the compositor only applies the
+ * operations, lenses and mappings to the `vec4 L<i>` a kind defines.
  */
 enum class LayerKind { Thematic, Luminance, Topographic, Visibility, Data, Sequence, Normals };
 
@@ -46,7 +43,15 @@ struct CompositeLayer {
      * `alpha >= threshold ? v1 : v0` (the front sweeps across; classes are never blended).
      */
     bool arrival = false;
+    /**
+     * @brief The kind's GLSL piece (layers/LayerShader.h); empty: the built-in `kind` planned
+     * from `fromElevation` / `arrival` (shaderOf()). A scene sets it from the layer's kind.
+     */
+    std::shared_ptr<const layers::LayerShader> shader{};
 };
+
+/** @brief The piece that samples layer `l`: its own, or the built-in kind's. Never null. */
+std::shared_ptr<const layers::LayerShader> shaderOf(const CompositeLayer& l);
 
 /** @brief Lens kinds of Döllner §5 / Trapp's focus+context. */
 enum class LensKind { Highlight, Visibility };
@@ -60,7 +65,7 @@ struct CompositeLens {
 struct CompositeProgramDesc {
     std::vector<CompositeLayer> layers;
     std::vector<CompositeLens> lenses;
-    int lutCount = 0;  ///< distinct LUTs referenced by Data/Sequence layers
+    int lutCount = 0;  ///< distinct LUTs referenced by layers whose kind uses one
     /**
      * @brief Write (scene x, scene y, elevation, 2.0) instead of a colour, into a float target:
      * the fidelity tests measure the rendered surface against the full-resolution data.
@@ -97,7 +102,7 @@ struct CompositeProgramDesc {
  * combined in ONE pass (no GL calls here; unit-tested on the text, compiled in GL tests).
  * Uniform interface (set by TerrainRenderer per frame / per tile):
  *   uLayer[i]          sampler2D of layer i's texture for the current tile
- *   uLayerB[i]         second frame for Sequence layers (same sampler for others)
+ *   uLayerB[i]         second texture of kinds sampling a frame pair (LayerShader::textures)
  *   uLayerRect[i]      vec4(originX, originY, 1/sizeX, 1/sizeY): scene metres -> uv
  *   uLayerParam[i]     vec4(opacity or weight, sequence alpha, lut index, valid 0/1)
  *   uLut[k], uLutDomain[k]
@@ -110,12 +115,13 @@ struct CompositeProgramDesc {
  */
 Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc, int maxTextureUnits);
 
-/** @brief Texture units the program needs (layers, second frames, LUTs, lighting). */
+/** @brief Texture units the program needs (each kind's textures, LUTs, lighting). */
 int textureUnitsNeeded(const CompositeProgramDesc& desc);
 
 /**
- * @brief The LUT (uLut[k]) of layer `layer`: its rank among the Data/Sequence layers, baked
- * into the generated shader as a constant; -1 for other kinds or an index out of range. The
+ * @brief The LUT (uLut[k]) of layer `layer`: its rank among the layers whose kind colours
+ * through a LUT, baked into the generated shader as a constant; -1 for other kinds or an index
+ * out of range. The
  * program samples no LUT for a layer whose rank is >= lutCount (its colour stays transparent).
  */
 int lutIndexOf(const CompositeProgramDesc& desc, int layer);

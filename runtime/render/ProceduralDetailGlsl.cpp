@@ -12,7 +12,7 @@ std::string ProceduralDetailGlsl::beforePrelude() {
     return "#define vNormal vNormalDetail\n";
 }
 
-Result<std::string> ProceduralDetailGlsl::declarations(const CompositeProgramDesc& desc) {
+Result<std::string> ProceduralDetailGlsl::declarations(const CompositeProgramDesc&) {
     auto noise = gl::ShaderLibrary::source("common/detailnoise.glsl");
     if (!noise) return noise.diagnostics;
     std::ostringstream s;
@@ -24,10 +24,6 @@ Result<std::string> ProceduralDetailGlsl::declarations(const CompositeProgramDes
          "uniform float uDetailFreq;\n"
          "uniform mat4 uModelViewProj;  // shared with warpgrid.vert\n"
          "uniform vec3 uOrigin;\n"
-      << (std::any_of(desc.layers.begin(), desc.layers.end(),
-                      [](const CompositeLayer& l) { return l.kind == LayerKind::Normals; })
-              ? ""  // NormalShading's helpers declare it
-              : "uniform float uVerticalScale;\n")
       << "uniform float uDetailTauTex;\n"
       << *noise << "\n"
       << R"(// Texture detail: octaves from 4 / d0 up, each faded out before it reaches 2 pixels
@@ -50,7 +46,7 @@ float detailTexture(vec2 p) {
 
 namespace {
 bool decoratedOver(const CompositeLayer& l) {
-    return (l.kind == LayerKind::Data || l.kind == LayerKind::Sequence) && !l.fromElevation;
+    return shaderOf(l)->coloursData();
 }
 }  // namespace
 

@@ -48,7 +48,7 @@ Result<TerrainRenderer> TerrainRenderer::create(const CompositeProgramDesc& desc
         const std::string n = std::to_string(i);
         r.mLayerLocs.push_back({loc("uLayer" + n), loc("uLayerB" + n), loc("uLayerRect" + n),
                                 loc("uLayerParam" + n)});
-        if (desc.layers[i].arrival) {
+        if (shaderOf(desc.layers[i])->textures() >= 3) {
             r.mLayerLocs.back().texT = loc("uLayerT" + n);
             r.mLayerLocs.back().rectT = loc("uLayerRectT" + n);
         }
@@ -59,15 +59,14 @@ Result<TerrainRenderer> TerrainRenderer::create(const CompositeProgramDesc& desc
                               loc("uLutNodata" + n), loc("uLutBelow" + n), loc("uLutAbove" + n)});
     }
     r.mLuts.resize(std::size_t(desc.lutCount));
-    // Unit layout: 0 elevation LUT, 1..lutCount transfer LUTs, then layers (sequence layers take
-    // two consecutive units). A data layer's LUT is its rank among data/sequence layers.
+    // Unit layout: 0 elevation LUT, 1..lutCount transfer LUTs, then layers (each takes its
+    // kind's texture count of consecutive units). A layer's LUT is its rank among LUT layers.
     int unit = 1 + desc.lutCount, lutRank = 0;
     for (const auto& l : desc.layers) {
-        const bool scalar = l.kind == LayerKind::Data || l.kind == LayerKind::Sequence;
-        r.mLayerSlots.push_back({unit, scalar ? lutRank : 0});
-        unit += l.kind == LayerKind::Sequence ? 2 : 1;
-        unit += l.kind == LayerKind::Sequence && l.arrival ? 1 : 0;  // threshold texture
-        lutRank += scalar ? 1 : 0;
+        const auto piece = shaderOf(l);
+        r.mLayerSlots.push_back({unit, piece->usesLut() ? lutRank : 0});
+        unit += piece->textures();
+        lutRank += piece->usesLut() ? 1 : 0;
     }
     for (std::size_t j = 0; j < desc.lenses.size(); ++j)
         r.mLensLocs.push_back({loc("uLens" + std::to_string(j)), loc("uLensParam" + std::to_string(j)),

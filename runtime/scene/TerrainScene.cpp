@@ -1,15 +1,16 @@
 #include "runtime/scene/TerrainScene.h"
 
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <cstdlib>
-
+#include "runtime/anim/KeyedTrack.h"
 #include "runtime/color/TransferFunction.h"
 #include "runtime/core/Log.h"
 #include "runtime/loader/StoreTileLoader.h"
 #include "runtime/render/Textures.h"
 #include "runtime/terrain/MeshCells.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
 
 namespace kiosk::scene {
 namespace {
@@ -18,41 +19,6 @@ constexpr const char* kTag = "scene::TerrainScene";
 constexpr std::uint32_t kCacheSlots = 4096;
 /** Levels whose tile statistics are read up front so the error bound holds from frame one. */
 constexpr int kPrefetchedStatLevels = 4;
-
-render::LayerKind compositeKind(config::LayerKind k) {
-    switch (k) {
-        case config::LayerKind::Thematic: return render::LayerKind::Thematic;
-        case config::LayerKind::Luminance: return render::LayerKind::Luminance;
-        case config::LayerKind::Topographic: return render::LayerKind::Topographic;
-        case config::LayerKind::Visibility: return render::LayerKind::Visibility;
-        case config::LayerKind::Data: return render::LayerKind::Data;
-        case config::LayerKind::Sequence: return render::LayerKind::Sequence;
-        case config::LayerKind::Normals: return render::LayerKind::Normals;
-    }
-    return render::LayerKind::Thematic;
-}
-
-render::LayerOp compositeOp(config::OperationType t) {
-    switch (t) {
-        case config::OperationType::Opacity:
-        case config::OperationType::Replace: return render::LayerOp::Over;
-        case config::OperationType::Blend: return render::LayerOp::Blend;
-        case config::OperationType::Add: return render::LayerOp::Add;
-        case config::OperationType::Modulate: return render::LayerOp::Modulate;
-        case config::OperationType::Mask: return render::LayerOp::Mask;
-    }
-    return render::LayerOp::Over;
-}
-
-anim::Interpolation interpolationOf(const config::Layer& l, const io::SequenceInfo* seq) {
-    switch (l.interpolate) {
-        case config::SequenceInterpolation::None: return anim::Interpolation::None;
-        case config::SequenceInterpolation::Arrival: return anim::Interpolation::Arrival;
-        case config::SequenceInterpolation::Data: break;
-    }
-    // Class data (burn state) is never blended, whatever the author asked.
-    return seq && seq->categorical ? anim::Interpolation::Categorical : anim::Interpolation::Data;
-}
 
 glm::vec4 toVec4(const color::Rgba& c) { return {c.r, c.g, c.b, c.a}; }
 
@@ -139,116 +105,8 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
     setup.geometryLayer = 0;
     setup.geometryMaxLevel = s->mElevation->levels - 1;
     render::CompositeProgramDesc desc;
-    s->mLayers.reserve(scenario.layers.size());
-    s->mStatus.push_back({"terrain", LayerState::Ready, {}, 0});
-    s->mKeyLayerStatus.push_back(0);
-    for (const auto& cl : scenario.layers) {
-        if (!cl.enabled) continue;
-        LayerStatus status{cl.id, LayerState::Ready, {}, 0};
-        StackLayer sl;
-        sl.config = &cl;
-        sl.strength = float(cl.operation.opacity *
-                            (cl.operation.type == config::OperationType::Add ? cl.operation.weight : 1.0));
-        sl.nodataAs = cl.nodataAs ? std::optional<float>(float(*cl.nodataAs)) : std::nullopt;
-        render::CompositeLayer comp{compositeKind(cl.kind), compositeOp(cl.operation.type), -1, false};
-        const bool sameStore = cl.source.store.empty() || cl.source.store == scenario.terrain.store;
-        std::string problem;
-        if (!sameStore) {
-            problem = "source store \"" + cl.source.store +
-                      "\" differs from the terrain store; layers must share the terrain's grid";
-        } else if (cl.kind == config::LayerKind::Data && cl.source.sequence.empty() &&
-                   cl.source.layer == s->mElevation->name) {
-            comp.fromElevation = true;  // hypsometric tint from the mesh itself
-        } else if (cl.kind == config::LayerKind::Sequence || cl.kind == config::LayerKind::Data) {
-            sl.sequence = info.findSequence(cl.source.sequence);
-            if (!sl.sequence) {
-                problem = "store has no sequence \"" + cl.source.sequence + "\"";
-            } else {
-                sl.keyLayer = int(bindings.size());
-                bindings.push_back({sl.sequence->name, io::LayerKind::Sequence});
-                sl.interpolation = cl.kind == config::LayerKind::Data ? anim::Interpolation::None
-                                                                      : interpolationOf(cl, sl.sequence);
-                const int maxLevel = sl.sequence->levels - 1;
-                sl.specA = int(setup.textures.size());
-                setup.textures.push_back({std::uint16_t(sl.keyLayer), 0, maxLevel});
-                if (cl.kind == config::LayerKind::Sequence) {
-                    sl.specB = int(setup.textures.size());
-                    setup.textures.push_back({std::uint16_t(sl.keyLayer), 0, maxLevel});
-                }
-                if (cl.kind == config::LayerKind::Sequence &&
-                    sl.interpolation == anim::Interpolation::Arrival) {
-                    // Per-pixel thresholds of each frame pair, computed by the loader thread.
-                    sl.keyLayerT = int(bindings.size());
-                    bindings.push_back(
-                        {sl.sequence->name, io::LayerKind::Sequence, true, sl.nodataAs});
-                    sl.specT = int(setup.textures.size());
-                    setup.textures.push_back({std::uint16_t(sl.keyLayerT), 0, maxLevel});
-                    comp.arrival = true;
-                }
-            }
-        } else {
-            const io::LayerInfo* li = info.findLayer(cl.source.layer);
-            if (!li || li->kind != io::LayerKind::Imagery) {
-                problem = "store has no imagery layer \"" + cl.source.layer + "\"";
-            } else {
-                sl.keyLayer = int(bindings.size());
-                bindings.push_back({li->name, io::LayerKind::Imagery});
-                sl.specA = int(setup.textures.size());
-                setup.textures.push_back({std::uint16_t(sl.keyLayer), 0, li->levels - 1});
-            }
-        }
-        if (!problem.empty()) {
-            status.state = LayerState::Failed;
-            status.message = s->mStorePath.string() + ": " + cl.pointer + ": " + problem;
-            KIOSK_LOG_WARN(kTag, "layer \"%s\" FAILED: %s", cl.id.c_str(), status.message.c_str());
-            s->mStatus.push_back(status);
-            continue;
-        }
-        if (comp.kind == render::LayerKind::Data || comp.kind == render::LayerKind::Sequence) {
-            const auto* tf = scenario.findTransfer(cl.transfer);
-            SceneLut lut;
-            lut.name = cl.transfer;
-            lut.function = tf ? &tf->function : nullptr;
-            if (!tf) {
-                status.state = LayerState::Degraded;
-                status.message = cl.pointer + "/transfer: unknown transfer function \"" +
-                                 cl.transfer + "\"; drawn in grey";
-            }
-            s->mLuts.push_back(std::move(lut));
-            ++desc.lutCount;
-        }
-        if (sl.keyLayer >= 0) {
-            s->mKeyLayerStatus.resize(std::size_t(sl.keyLayer) + 1, -1);
-            s->mKeyLayerStatus[std::size_t(sl.keyLayer)] = int(s->mStatus.size());
-        }
-        if (sl.keyLayerT >= 0) {
-            s->mKeyLayerStatus.resize(std::size_t(sl.keyLayerT) + 1, -1);
-            s->mKeyLayerStatus[std::size_t(sl.keyLayerT)] = int(s->mStatus.size());
-        }
-        s->mStatus.push_back(status);
-        desc.layers.push_back(comp);
-        s->mLayers.push_back(std::move(sl));
-    }
-    for (std::size_t i = 0; i < s->mLayers.size(); ++i)
-        if (s->mLayers[i].sequence && s->mLayers[i].specB >= 0 && s->mFirstSequenceLayer == SIZE_MAX)
-            s->mFirstSequenceLayer = i;
-    // Blend references and lenses name layers by id; resolve to stack indices.
-    auto stackIndex = [&](const std::string& id) {
-        for (std::size_t i = 0; i < s->mLayers.size(); ++i)
-            if (s->mLayers[i].config->id == id) return int(i);
-        return -1;
-    };
-    for (std::size_t i = 0; i < s->mLayers.size(); ++i) {
-        if (desc.layers[i].op != render::LayerOp::Blend) continue;
-        desc.layers[i].visibilityLayer = stackIndex(s->mLayers[i].config->operation.visibility);
-        if (desc.layers[i].visibilityLayer < 0) desc.layers[i].op = render::LayerOp::Over;
-    }
-    for (const auto& lens : scenario.lenses) {
-        render::CompositeLens cl{lens.kind == config::LensKind::Highlight ? render::LensKind::Highlight
-                                                                          : render::LensKind::Visibility,
-                                 stackIndex(lens.inside), stackIndex(lens.outside)};
-        desc.lenses.push_back(cl);
-    }
+    s->mLayerStores.push_back({scenario.terrain.store, s->mStorePath, s->mReader.get(), nullptr});
+    s->buildLayerStack(bindings, setup, desc);
 
     // The scene's elevation LUT is a flat grey and Session draws with elevationLutWeight 0
     // (hypsometric tint comes from data layers): skip that fetch per pixel.
@@ -303,9 +161,11 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
     // The prefetch selector looks at a future camera; it neither pins tiles nor needs GPU copies.
     s->mPrefetchSelector.configure(setup);
     s->mPrefetchResidency = std::make_unique<terrain::CacheResidency>(*s->mCache, false, false);
-    const auto path = s->mStorePath;
-    auto fn = std::make_unique<loader::StoreTileLoader>(
-        [path] { return io::StoreReader::open(path); }, bindings, s->mOptions);
+    // One loader for every store the layers read: the same queue, cache and budgets.
+    std::vector<loader::StoreOpener> openers;
+    for (const auto& st : s->mLayerStores)
+        openers.push_back([path = st.path] { return io::StoreReader::open(path); });
+    auto fn = std::make_unique<loader::StoreTileLoader>(std::move(openers), bindings, s->mOptions);
     // Test hook (atomic-step tests): a slow disk, in milliseconds per tile.
     if (const char* delay = std::getenv("GEOKIOSK_TEST_LOAD_DELAY_MS"))
         fn->setArtificialDelay(std::atof(delay) / 1000.0);
@@ -563,25 +423,22 @@ void TerrainScene::bindLenses() {
     const double start = mScenario->clock ? mScenario->clock->start : 0.0;
     for (std::size_t j = 0; j < mScenario->lenses.size(); ++j) {
         const config::Lens& lens = mScenario->lenses[j];
-        glm::dvec2 centre(lens.center[0], lens.center[1]), radii(lens.radii[0], lens.radii[1]);
         // Keyed positions: hold before the first key, piecewise linear between keys.
-        const config::LensKey* prev = nullptr;
-        for (const auto& key : lens.keys) {
-            const double kt = key.time.resolve(start);
-            glm::dvec2 kc = key.center ? glm::dvec2((*key.center)[0], (*key.center)[1]) : centre;
-            glm::dvec2 kr = key.radii ? glm::dvec2((*key.radii)[0], (*key.radii)[1]) : radii;
-            if (kt <= mTime || !prev) {
-                centre = kc;
-                radii = kr;
-            } else {
-                const double pt = prev->time.resolve(start);
-                const double a = kt > pt ? std::clamp((mTime - pt) / (kt - pt), 0.0, 1.0) : 1.0;
-                centre = glm::mix(centre, kc, a);
-                radii = glm::mix(radii, kr, a);
-                break;
-            }
-            prev = &key;
-        }
+        struct Place {
+            glm::dvec2 centre, radii;
+        };
+        const Place place = anim::keyedTrack(
+            Place{glm::dvec2(lens.center[0], lens.center[1]),
+                  glm::dvec2(lens.radii[0], lens.radii[1])},
+            lens.keys, mTime, [start](const config::LensKey& k) { return k.time.resolve(start); },
+            [](Place& p, const config::LensKey& k) {
+                if (k.center) p.centre = glm::dvec2((*k.center)[0], (*k.center)[1]);
+                if (k.radii) p.radii = glm::dvec2((*k.radii)[0], (*k.radii)[1]);
+            },
+            [](const Place& a, const Place& b, double t) {
+                return Place{glm::mix(a.centre, b.centre, t), glm::mix(a.radii, b.radii, t)};
+            });
+        const glm::dvec2 centre = place.centre, radii = place.radii;
         render::LensBinding b;
         b.centre = centre;
         b.radii = glm::max(radii, glm::dvec2(1e-3));

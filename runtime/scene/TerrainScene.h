@@ -29,6 +29,10 @@
 #include "runtime/terrain/TileSelector.h"
 #include "runtime/terrain/TileStatsTable.h"
 
+namespace kiosk::loader {
+struct LayerBinding;  // runtime/loader/StoreTileLoader.h
+}
+
 namespace kiosk::scene {
 
 /** @brief osgEarth-style layer status: a bad layer degrades itself, never the process. */
@@ -228,6 +232,17 @@ private:
         int keyLayerT = -1, specT = -1;
     };
 
+    /**
+     * @brief The stack: each enabled layer planned by its kind (layers/Registry.h) and served
+     * from the store it names (TerrainSceneLayers.cpp).
+     */
+    void buildLayerStack(std::vector<loader::LayerBinding>& bindings, terrain::SelectorSetup& setup,
+                         render::CompositeProgramDesc& desc);
+    /**
+     * @brief Index into mLayerStores of store `id` (0: the terrain's), opened on first use;
+     * -1 with `problem` when it cannot be opened or does not share the terrain's CRS and grid.
+     */
+    int layerStore(const std::string& id, std::string& problem);
     Diagnostics buildRenderer();
     render::LutBinding lutBinding(std::size_t k) const;
     // TerrainSceneDetail.cpp: the procedural detail grid near the camera (issue 21).
@@ -278,6 +293,14 @@ private:
     const config::Scenario* mScenario = nullptr;
     std::unique_ptr<io::StoreReader> mReader;
     std::filesystem::path mStorePath;
+    /** @brief A store the layers read (the loader opens its own reader of each). */
+    struct LayerStore {
+        std::string id;
+        std::filesystem::path path;
+        io::StoreReader* reader = nullptr;       ///< metadata on the render thread
+        std::unique_ptr<io::StoreReader> owned;  ///< other stores than the terrain's
+    };
+    std::vector<LayerStore> mLayerStores;  ///< [0]: the terrain store (reader = mReader)
     io::TileGrid mGrid;
     const io::LayerInfo* mElevation = nullptr;
     terrain::TerrainOptions mOptions;

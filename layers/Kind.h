@@ -1,0 +1,63 @@
+#pragma once
+
+#include "config/Scenario.h"
+#include "layers/LayerShader.h"
+#include "runtime/anim/FrameBracket.h"
+#include "runtime/io/StoreTypes.h"
+
+#include <memory>
+#include <string>
+
+namespace kiosk::layers {
+
+/** @brief Where a layer's texels come from (the scene serves each through its tile cache). */
+enum class SourceKind {
+    None,           ///< nothing to load (unused layer slot)
+    MeshElevation,  ///< the terrain mesh's own elevation, interpolated per fragment
+    Imagery,        ///< an RGBA raster layer of the store (imagery, hillshade, normal map)
+    Sequence,       ///< a time-keyed sequence of scalar frames (RG16F value, validity)
+};
+
+/**
+ * @brief A scenario layer's data sources as a kind planned them. The scene turns this into
+ * store bindings and texture requests and runs the shared atomic frame-pair service
+ * (anim::VisiblePair) for sequences; a kind never re-implements either.
+ */
+struct SourcePlan {
+    SourceKind source = SourceKind::None;
+    std::string table;  ///< store layer or sequence name
+    int maxLevel = 0;   ///< finest texture level of the table
+    const io::SequenceInfo* sequence = nullptr;
+    /** @brief Sequences: the frame pair bracketing the data time (uLayerB), else one frame. */
+    bool framePair = false;
+    /** @brief Per-pixel thresholds of the pair computed by the loader (uLayerT). */
+    bool thresholds = false;
+    anim::Interpolation interpolation = anim::Interpolation::None;
+    /** @brief Transfer function colouring the values (LUT and legend); empty: none. */
+    std::string transfer;
+};
+
+/** @brief What the scene offers a kind while planning: the terrain store's metadata. */
+struct StoreView {
+    const io::StoreInfo& info;
+    const std::string& elevation;  ///< the terrain's elevation layer name
+};
+
+/**
+ * @brief One layer kind (thematic, data, sequence, ...): what is specific to it. Stateless and
+ * shared: the per-layer state (frame pairs, prefetch) is the scene's service.
+ */
+class Kind {
+public:
+    virtual ~Kind() = default;
+    /**
+     * @brief Plan where `layer`'s values come from in `store`. Returns the reason when it cannot
+     * be served (the layer is then FAILED with it; the others keep rendering), else empty.
+     */
+    virtual std::string plan(const config::Layer& layer, const StoreView& store,
+                             SourcePlan& out) const = 0;
+    /** @brief The compositor's piece for a layer planned as `plan`. */
+    virtual std::shared_ptr<const LayerShader> shader(const SourcePlan& plan) const = 0;
+};
+
+}  // namespace kiosk::layers

@@ -1,0 +1,39 @@
+#include "layers/Registry.h"
+
+#include "layers/data/Data.h"
+#include "layers/luminance/Luminance.h"
+#include "layers/normals/Normals.h"
+#include "layers/sequence/Sequence.h"
+#include "layers/thematic/Thematic.h"
+#include "layers/topographic/Topographic.h"
+#include "layers/visibility/Visibility.h"
+
+namespace kiosk::layers {
+
+void Registry::add(std::string name, std::unique_ptr<Kind> kind) {
+    mKinds[std::move(name)] = std::move(kind);
+}
+
+const Kind* Registry::find(std::string_view name) const {
+    auto it = mKinds.find(name);
+    return it == mKinds.end() ? nullptr : it->second.get();
+}
+
+Registry& registry() {
+    // Explicit registration (not static initialisers): objects of a static library that nothing
+    // references are dropped by the linker, and their registration with them.
+    static Registry r = [] {
+        Registry k;
+        k.add("thematic", std::make_unique<ThematicKind>());
+        k.add("luminance", std::make_unique<LuminanceKind>());
+        k.add("topographic", std::make_unique<TopographicKind>());
+        k.add("normals", std::make_unique<NormalsKind>());
+        k.add("visibility", std::make_unique<VisibilityKind>());
+        k.add("data", std::make_unique<DataKind>());
+        k.add("sequence", std::make_unique<SequenceKind>());
+        return k;
+    }();
+    return r;
+}
+
+}  // namespace kiosk::layers

@@ -1,0 +1,39 @@
+#include "layers/ScalarSource.h"
+
+#include <string>
+
+namespace kiosk::layers {
+
+std::string ScalarSource::plan(const config::Layer& layer, const StoreView& store,
+                               SourcePlan& out) {
+    out.sequence = store.info.findSequence(layer.source.sequence);
+    if (!out.sequence) return "store has no sequence \"" + layer.source.sequence + "\"";
+    out.source = SourceKind::Sequence;
+    out.table = out.sequence->name;
+    out.maxLevel = out.sequence->levels - 1;
+    out.transfer = layer.transfer;
+    return {};
+}
+
+void ScalarSource::appendColour(std::ostream& s, int i, int lut) {
+    s << "    vec4 L" << i << " = vec4(0.0);\n"
+      << "    {\n        float v = d" << i << ".r / max(d" << i << ".g, 1e-6);\n";
+    // The LUT index is a per-layer constant baked in by the generator: llvmpipe runs both
+    // sides of a branch under a mask, so a run-time `if (k == ...)` chain sampled every LUT for
+    // every data layer (docs/terrain.md §6).
+    if (lut >= 0) {
+        const int k = lut;
+        s << "        {\n"
+          << "            vec4 c = texture(uLut" << k << ", vec2(lutCoord(v, uLutDomain" << k
+          << ", uLutSize" << k << "), 0.5));\n"
+          << "            if (v < uLutDomain" << k << ".x && uLutBelow" << k
+          << ".a >= 0.0) c = uLutBelow" << k << ";\n"
+          << "            if (v > uLutDomain" << k << ".y && uLutAbove" << k
+          << ".a >= 0.0) c = uLutAbove" << k << ";\n"
+          << "            L" << i << " = d" << i << ".g >= 0.5 ? c : uLutNodata" << k
+          << ";\n        }\n";
+    }
+    s << "    }\n";
+}
+
+}  // namespace kiosk::layers
