@@ -59,7 +59,7 @@ std::vector<std::uint8_t> encodeMeshBlob(const QuantizedMesh& mesh) {
         if (!mesh.splitTiers.empty()) packed[v * kComponents + 3] = mesh.splitTiers[v];
     }
     // 12-bit octahedral normals: within 0.05 degrees (shading matches the built mesh to well
-    // under one 8-bit level), and the zero low bits compress; 16 bits made blobs 12 % larger.
+    // under one 8-bit level), and the zero low bits compress (other widths not measured).
     std::vector<std::int16_t> oct(count * 4);
     if (count) meshopt_encodeFilterOct(oct.data(), count, 8, kNormalBits, normal4.data());
     for (std::size_t v = 0; v < count; ++v)
