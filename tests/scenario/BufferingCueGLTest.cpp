@@ -5,7 +5,7 @@
 #include "runtime/app/ImageOutput.h"
 #include "runtime/app/Session.h"
 #include "runtime/render/FontAtlas.h"
-#include "tests/support/EglTestContext.h"
+#include "tests/support/DemoStoreTest.h"
 #include "tests/support/SettleView.h"
 
 #include <gtest/gtest.h>
@@ -14,14 +14,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
 #include <thread>
 #include <vector>
 
 namespace kiosk::app {
 namespace {
 
-namespace fs = std::filesystem;
 constexpr int kW = 960, kH = 600;  // a 15 px overlay font: glyphs with solid strokes
 constexpr int kBand = 60;          // rows holding the top-left time label at this size
 
@@ -56,15 +54,8 @@ int mismatches(const TextMask& a, const TextMask& b, int toX) {
     return n;
 }
 
-class BufferingCue : public test::EglTest {
+class BufferingCue : public test::DemoStoreTest {
 protected:
-    void SetUp() override {
-        test::EglTest::SetUp();
-        if (IsSkipped() || HasFatalFailure()) return;
-        if (!fs::exists("data/generated/rainier.gpkg"))
-            KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_DATA",
-                               "demo store missing: run tools/prepare-demo.sh");
-    }
     /** The demo with only the time label ("HH:MM", top-left) on: nothing else bright there. */
     std::unique_ptr<Session> open(bool timeLabel = true) {
         auto s = Session::open("scenarios/demo/rainier.json", mCaps, [&](config::Scenario& sc) {

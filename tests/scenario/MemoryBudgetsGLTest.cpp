@@ -6,7 +6,7 @@
 #include "runtime/app/MemoryBudgets.h"
 #include "runtime/app/Session.h"
 #include "runtime/io/StoreReader.h"
-#include "tests/support/EglTestContext.h"
+#include "tests/support/DemoStoreTest.h"
 
 #include <gtest/gtest.h>
 
@@ -39,15 +39,8 @@ void addDataLayers(config::Scenario& sc, int extra) {
     }
 }
 
-class MemoryBudgets : public test::EglTest {
+class MemoryBudgets : public test::DemoStoreTest {
 protected:
-    void SetUp() override {
-        test::EglTest::SetUp();
-        if (IsSkipped() || HasFatalFailure()) return;
-        if (!fs::exists("data/generated/rainier.gpkg"))
-            KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_DATA",
-                               "demo store missing: run tools/prepare-demo.sh");
-    }
     void TearDown() override {
         io::StoreReader::setPageCacheBytes(0);  // back to the default for other tests
         test::EglTest::TearDown();

@@ -3,7 +3,7 @@
 // with no session alive, so what it gains after the first cycles is kept across sessions.
 #include "runtime/app/Session.h"
 #include "runtime/service/ServiceState.h"
-#include "tests/support/EglTestContext.h"
+#include "tests/support/DemoStoreTest.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <malloc.h>
 #include <thread>
 #include <vector>
@@ -19,18 +18,10 @@
 namespace kiosk::app {
 namespace {
 
-namespace fs = std::filesystem;
 constexpr int kW = 64, kH = 36;
 
-class SessionReopen : public test::EglTest {
+class SessionReopen : public test::DemoStoreTest {
 protected:
-    void SetUp() override {
-        test::EglTest::SetUp();
-        if (IsSkipped() || HasFatalFailure()) return;
-        if (!fs::exists("data/generated/rainier.gpkg"))
-            KIOSK_SKIP_OR_FAIL("KIOSK_REQUIRE_DATA",
-                               "demo store missing: run tools/prepare-demo.sh");
-    }
     /** Open the demo, play `frames` frames of its tour (tiles load and are evicted), close. */
     void cycle(gl::RenderTarget& rt, int frames) {
         auto s = Session::open("scenarios/demo/rainier.json", mCaps);
