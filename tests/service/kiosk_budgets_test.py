@@ -12,18 +12,14 @@ import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from kiosk_common import Checks, Kiosk, gl_env, skip_or_fail, temp_dir, wait_until  # noqa: E402
+from kiosk_common import Checks, Kiosk, demo_setup, gl_env, skip_or_fail, temp_dir, wait_until  # noqa: E402
 
 try:
     from prometheus_client.parser import text_string_to_metric_families
 except ImportError:
     skip_or_fail("python3-prometheus-client missing")
 
-GK, ROOT = sys.argv[1], os.path.abspath(sys.argv[2])
-os.chdir(ROOT)
-STORE = os.path.join(ROOT, "data/generated/rainier.gpkg")
-if not os.path.exists(STORE):
-    skip_or_fail("demo store missing (run tools/prepare-demo.sh)")
+GK, ROOT, STORE = demo_setup(sys.argv)
 c = Checks()
 
 LUT_BUDGET = 16384        # 4 LUTs of 1024 RGBA8 texels; the demo has 2 (relief, flood)

@@ -24,6 +24,17 @@ def skip_or_fail(message):
     sys.exit(SKIP)
 
 
+def demo_setup(argv):
+    """`SCRIPT GEOKIOSK REPO_ROOT`: work from the repository root; skip (or fail under
+    KIOSK_REQUIRE_DATA) when the demo store is missing. Returns (geokiosk, root, demo store)."""
+    gk, root = argv[1], os.path.abspath(argv[2])
+    os.chdir(root)
+    store = os.path.join(root, "data/generated/rainier.gpkg")
+    if not os.path.exists(store):
+        skip_or_fail("demo store missing (run tools/prepare-demo.sh)")
+    return gk, root, store
+
+
 def gl_env():
     env = dict(os.environ)
     env["__EGL_VENDOR_LIBRARY_FILENAMES"] = "/usr/share/glvnd/egl_vendor.d/50_mesa.json"

@@ -12,12 +12,9 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from kiosk_common import Checks, Kiosk, gl_env, skip_or_fail, temp_dir  # noqa: E402
+from kiosk_common import Checks, Kiosk, demo_setup, gl_env, temp_dir  # noqa: E402
 
-GK, ROOT = sys.argv[1], os.path.abspath(sys.argv[2])
-os.chdir(ROOT)
-if not os.path.exists("data/generated/rainier.gpkg"):
-    skip_or_fail("demo store missing (run tools/prepare-demo.sh)")
+GK, ROOT, _ = demo_setup(sys.argv)
 c = Checks()
 demo = os.path.join(ROOT, "scenarios/demo/rainier.json")
 broken = os.path.join(ROOT, "scenarios/broken/unknown-transfer.json")

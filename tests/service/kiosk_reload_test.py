@@ -12,13 +12,9 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from kiosk_common import Checks, Kiosk, gl_env, skip_or_fail, temp_dir, wait_until  # noqa: E402
+from kiosk_common import Checks, Kiosk, demo_setup, gl_env, temp_dir, wait_until  # noqa: E402
 
-GK, ROOT = sys.argv[1], os.path.abspath(sys.argv[2])
-os.chdir(ROOT)
-STORE = os.path.join(ROOT, "data/generated/rainier.gpkg")
-if not os.path.exists(STORE):
-    skip_or_fail("demo store missing (run tools/prepare-demo.sh)")
+GK, ROOT, STORE = demo_setup(sys.argv)
 c = Checks()
 # Longest the frame counter may stand still while the worker loads the bomb. Frames here take
 # ~10-30 ms; the bound leaves room for a loaded 2-core machine, while a load on the frame loop

@@ -13,13 +13,10 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from kiosk_common import Checks, Kiosk, NotifySocket, gl_env, skip_or_fail, temp_dir  # noqa: E402
+from kiosk_common import Checks, Kiosk, demo_setup, NotifySocket, gl_env, skip_or_fail, temp_dir  # noqa: E402
 
-GK, ROOT = sys.argv[1], sys.argv[2]
-os.chdir(ROOT)
+GK, ROOT, _ = demo_setup(sys.argv)
 DEMO = "scenarios/demo/rainier.json"
-if not os.path.exists("data/generated/rainier.gpkg"):
-    skip_or_fail("demo store missing (run tools/prepare-demo.sh)")
 try:
     from prometheus_client.parser import text_string_to_metric_families
 except ImportError:

@@ -18,12 +18,9 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from kiosk_common import Checks, Kiosk, gl_env, skip_or_fail, temp_dir  # noqa: E402
+from kiosk_common import Checks, Kiosk, demo_setup, gl_env, skip_or_fail, temp_dir  # noqa: E402
 
-GK, ROOT = sys.argv[1], sys.argv[2]
-os.chdir(ROOT)
-if not os.path.exists("data/generated/rainier.gpkg"):
-    skip_or_fail("demo store missing (run tools/prepare-demo.sh)")
+GK, ROOT, _ = demo_setup(sys.argv)
 weston = shutil.which("weston")
 if not weston:
     skip_or_fail("weston is not installed (apt-get install weston)")
