@@ -43,16 +43,22 @@ void Reader::layers(const json& arr) {
         }
         assign(l.interpolate, o.oneOf("interpolate", kInterpolations));
         if (auto v = o.num("nodataAs")) l.nodataAs = v;
+        if (kind) product(o, l);
         if (kind) {
-            const bool isSeq = *kind == LayerKind::Sequence;
+            const bool isSeq = *kind == LayerKind::Sequence || isProductKind(*kind);
             if (!isSeq && (o.has("interpolate") || o.has("nodataAs")))
                 mC.error("SCENARIO_CONFLICT", ptr,
                          "\"interpolate\" and \"nodataAs\" apply to sequence layers only");
+            if (isProductKind(*kind) && o.has("interpolate"))
+                mC.error("SCENARIO_CONFLICT", o.at("interpolate"),
+                         "\"interpolate\" applies to sequence layers only (a product follows its "
+                         "sequence's data between steps)");
             if (!o.has("source") && *kind != LayerKind::Topographic)
                 mC.error("SCENARIO_MISSING", ptr, "missing required property \"source\"");
             if (o.has("source") && isSeq && l.source.sequence.empty())
                 mC.error("SCENARIO_MISSING", o.at("source"),
-                         "a sequence layer needs \"sequence\" (the store's sequence name)");
+                         std::string("a ") + layerKindName(*kind) +
+                             " layer needs \"sequence\" (the store's sequence name)");
             if (o.has("source") && !isSeq && l.source.layer.empty() && !l.source.store.empty())
                 mC.error("SCENARIO_MISSING", o.at("source"), "missing required property \"layer\"");
             const bool needsTransfer = isSeq || *kind == LayerKind::Data;

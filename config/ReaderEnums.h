@@ -15,7 +15,11 @@ inline const EnumTable<LayerKind> kLayerKinds = {{"thematic", LayerKind::Themati
                                                  {"visibility", LayerKind::Visibility},
                                                  {"data", LayerKind::Data},
                                                  {"sequence", LayerKind::Sequence},
-                                                 {"normals", LayerKind::Normals}};
+                                                 {"normals", LayerKind::Normals},
+                                                 {"maximum", LayerKind::Maximum},
+                                                 {"arrival", LayerKind::Arrival},
+                                                 {"duration", LayerKind::Duration},
+                                                 {"hazard", LayerKind::Hazard}};
 inline const EnumTable<OperationType> kOperations = {
     {"opacity", OperationType::Opacity}, {"blend", OperationType::Blend},
     {"add", OperationType::Add},         {"modulate", OperationType::Modulate},

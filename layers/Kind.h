@@ -4,7 +4,9 @@
 #include "layers/LayerShader.h"
 #include "runtime/anim/FrameBracket.h"
 #include "runtime/io/StoreTypes.h"
+#include "runtime/loader/Derivation.h"
 
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -35,12 +37,32 @@ struct SourcePlan {
     anim::Interpolation interpolation = anim::Interpolation::None;
     /** @brief Transfer function colouring the values (LUT and legend); empty: none. */
     std::string transfer;
+    /**
+     * @brief Derived products (layers/products/): the frames of the pair are derived on the
+     * loader thread from the stored ones (hazard class); null: the stored frames.
+     */
+    std::shared_ptr<const loader::Derivation> frames;
+    /**
+     * @brief Derived products: uLayerT<i> is this cumulative state at the pair's first frame
+     * (maximum so far, arrival, duration), served and committed atomically with the pair.
+     */
+    std::shared_ptr<const loader::Derivation> state;
+    /**
+     * @brief uLayerProduct<i> = (time of the pair's first frame, the pair's interval) in units
+     * of `timeUnit` seconds since `timeOrigin` (epoch seconds).
+     */
+    bool productClock = false;
+    double timeOrigin = 0, timeUnit = 3600;
+    /** @brief A kind whose GLSL depends on the layer's options builds its piece in plan(). */
+    std::shared_ptr<const LayerShader> piece;
 };
 
 /** @brief What the scene offers a kind while planning: the terrain store's metadata. */
 struct StoreView {
     const io::StoreInfo& info;
     const std::string& elevation;  ///< the terrain's elevation layer name
+    /** @brief Epoch seconds products count time from (the clock start); NaN: none given. */
+    double timeOrigin = std::numeric_limits<double>::quiet_NaN();
 };
 
 /**
@@ -58,6 +80,14 @@ public:
                              SourcePlan& out) const = 0;
     /** @brief The compositor's piece for a layer planned as `plan`. */
     virtual std::shared_ptr<const LayerShader> shader(const SourcePlan& plan) const = 0;
+    /**
+     * @brief The title of the layer's own legend (overlays.legend.layer); empty: the transfer
+     * function's label. Units follow from the transfer function.
+     */
+    virtual std::string legendTitle(const config::Layer& layer, const SourcePlan& plan) const {
+        (void)layer, (void)plan;
+        return {};
+    }
 };
 
 }  // namespace kiosk::layers

@@ -1,7 +1,11 @@
 #include "layers/Registry.h"
 
+#include "layers/arrival/Arrival.h"
 #include "layers/data/Data.h"
+#include "layers/duration/Duration.h"
+#include "layers/hazard/Hazard.h"
 #include "layers/luminance/Luminance.h"
+#include "layers/maximum/Maximum.h"
 #include "layers/normals/Normals.h"
 #include "layers/sequence/Sequence.h"
 #include "layers/thematic/Thematic.h"
@@ -31,6 +35,10 @@ Registry& registry() {
         k.add("visibility", std::make_unique<VisibilityKind>());
         k.add("data", std::make_unique<DataKind>());
         k.add("sequence", std::make_unique<SequenceKind>());
+        k.add("maximum", std::make_unique<MaximumKind>());
+        k.add("arrival", std::make_unique<ArrivalKind>());
+        k.add("duration", std::make_unique<DurationKind>());
+        k.add("hazard", std::make_unique<HazardKind>());
         return k;
     }();
     return r;

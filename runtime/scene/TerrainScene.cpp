@@ -166,6 +166,8 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
     for (const auto& st : s->mLayerStores)
         openers.push_back([path = st.path] { return io::StoreReader::open(path); });
     auto fn = std::make_unique<loader::StoreTileLoader>(std::move(openers), bindings, s->mOptions);
+    // Running states of derived products (loader thread): a quarter of the CPU tile budget.
+    fn->setDerivedBudget(budget.cpuBytes / 4);
     // Test hook (atomic-step tests): a slow disk, in milliseconds per tile.
     if (const char* delay = std::getenv("GEOKIOSK_TEST_LOAD_DELAY_MS"))
         fn->setArtificialDelay(std::atof(delay) / 1000.0);
@@ -463,6 +465,14 @@ void TerrainScene::noteDrawnFrames(const StackLayer& l, const terrain::DrawTile&
         if (shown >= 0 && shown != a.key.frame) mFrame.mixedSequenceFrames = true;
         shown = a.key.frame;
     }
+    // A derived product's state (or arrival thresholds) belongs to the pair's first frame: a
+    // tile drawing another step's state mixes times as much as one drawing another frame.
+    if (l.specT >= 0 && int(t.textureCount) > l.specT) {
+        const auto& a = mSelection->textures[t.firstTexture + std::uint32_t(l.specT)];
+        if (!a.handle.valid() || a.fromAncestor) ++mFrame.shownTilesIncomplete;
+        if (a.handle.valid() && mFrame.shownFrameA >= 0 && a.key.frame != mFrame.shownFrameA)
+            mFrame.mixedSequenceFrames = true;
+    }
 }
 
 void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& style) {
@@ -505,6 +515,12 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
                     b.alpha = float(l.shown.alpha);
                 }
                 if (l.specT >= 0) bindArrival(l, t, b);
+                if (l.productClock) {
+                    const auto& ft = l.sequence->frameTimes;
+                    b.product = glm::vec4(float((ft[l.shown.i0] - l.timeOrigin) / l.timeUnit),
+                                          float((ft[l.shown.i1] - ft[l.shown.i0]) / l.timeUnit),
+                                          0.0f, 0.0f);
+                }
             }
             b.strength = l.strengthOverride.value_or(l.strength);
             r.setLayer(int(li), b);

@@ -166,6 +166,11 @@ public:
     std::vector<double> sequenceKeyTimes() const;
     const SceneLut* lut(const std::string& transferName) const;
     /**
+     * @brief The legend title layer `id`'s kind gives (products: what and since when, hazard:
+     * which curves or "depth only"); empty when the layer is not in the stack or has none.
+     */
+    std::string legendTitle(const std::string& id) const;
+    /**
      * @brief A chapter's override of layer `id`: hidden, or drawn with `opacity` (nullopt: the
      * scenario's). False if no such layer is in the stack.
      */
@@ -228,8 +233,15 @@ private:
         std::vector<std::uint8_t> aheadRequested;  ///< per frame: planned ahead, not yet shown
         std::size_t lastI0 = SIZE_MAX, lastI1 = SIZE_MAX;  ///< pair shown last frame
         bool lastHolding = false;
-        /** @brief interpolate "arrival": key layer and texture spec of the pair thresholds. */
+        /**
+         * @brief interpolate "arrival": key layer and texture spec of the pair thresholds;
+         * derived products: of their state at the pair's first frame.
+         */
         int keyLayerT = -1, specT = -1;
+        /** @brief Products: uLayerProduct = (first frame, interval) in timeUnit s since origin. */
+        bool productClock = false;
+        double timeOrigin = 0, timeUnit = 3600;
+        std::string legendTitle;  ///< the kind's legend title ("" : the transfer function's)
     };
 
     /**
