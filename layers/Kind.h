@@ -38,15 +38,11 @@ struct SourcePlan {
     /** @brief Transfer function colouring the values (LUT and legend); empty: none. */
     std::string transfer;
     /**
-     * @brief Derived products (layers/products/): the frames of the pair are derived on the
-     * loader thread from the stored ones (hazard class); null: the stored frames.
+     * @brief Derived products (layers/products/): the tiles of each frame are derived on the
+     * loader thread from the stored frames (a cumulative product's state with the frame pair,
+     * or a hazard class), served and committed like the frames; null: the stored frames.
      */
     std::shared_ptr<const loader::Derivation> frames;
-    /**
-     * @brief Derived products: uLayerT<i> is this cumulative state at the pair's first frame
-     * (maximum so far, arrival, duration), served and committed atomically with the pair.
-     */
-    std::shared_ptr<const loader::Derivation> state;
     /**
      * @brief uLayerProduct<i> = (time of the pair's first frame, the pair's interval) in units
      * of `timeUnit` seconds since `timeOrigin` (epoch seconds).

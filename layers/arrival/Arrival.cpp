@@ -12,24 +12,23 @@ public:
     ArrivalShader(double threshold, double isochrones)
         : mThreshold(products::ProductSource::literal(threshold)),
           mIsochrones(isochrones > 0 ? products::ProductSource::literal(isochrones) : "") {}
-    int textures() const override { return 3; }
     bool usesLut() const override { return true; }
     bool coloursData() const override { return true; }
     bool productUniform() const override { return true; }
-    const char* helpers() const override { return products::ProductSource::helpers(); }
     void sample(std::ostream& s, int i, int lut) const override {
-        products::ProductSource::samplePair(s, i);
+        products::ProductSource::sampleProduct(s, i);
         // Arrived by the pair's first frame: the loader's time. Else, when the value on screen
         // has reached the threshold, the crossing interpolated between the two frames (the
         // loader's rule, so the time does not jump when the next frame becomes the first).
+        const std::string& t = mThreshold;
         s << "    vec2 d" << i << " = vec2(0.0);\n"
-          << "    if (prodValid(s" << i << ")) {\n"
-          << "        d" << i << " = vec2(prodValue(s" << i << "), 1.0);\n"
-          << "    } else if (prodValid(a" << i << ") && prodValid(b" << i << ")) {\n"
-          << "        float v0 = prodValue(a" << i << "), v1 = prodValue(b" << i << ");\n"
-          << "        float f = (" << mThreshold << " - v0) / (v1 - v0);\n"
-          << "        if (v0 < " << mThreshold << " && v1 >= " << mThreshold << " && f <= al" << i
-          << ")\n"
+          << "    if (sv" << i << ") {\n"
+          << "        d" << i << " = vec2(S" << i << ", 1.0);\n"
+          << "    } else if (cv" << i << ") {\n"
+          << "        float f = (" << t << " - v0_" << i << ") / (v1_" << i << " - v0_" << i
+          << ");\n"
+          << "        if (v0_" << i << " < " << t << " && v1_" << i << " >= " << t << " && f <= al"
+          << i << ")\n"
           << "            d" << i << " = vec2(uLayerProduct" << i << ".x + f * uLayerProduct" << i
           << ".y, 1.0);\n"
           << "    }\n";
@@ -53,8 +52,9 @@ std::string ArrivalKind::plan(const config::Layer& layer, const StoreView& store
                               SourcePlan& out) const {
     if (std::string problem = products::ProductSource::plan(layer, store, out); !problem.empty())
         return problem;
-    out.state = std::make_shared<products::ArrivalTime>(
-        layer.product.threshold, products::TimeAxis{out.timeOrigin, out.timeUnit});
+    out.frames = std::make_shared<products::ArrivalTime>(
+        layer.product.threshold, products::TimeAxis{out.timeOrigin, out.timeUnit}, layer.nodataAs,
+        out.sequence->categorical);
     out.productClock = true;
     out.piece = std::make_shared<ArrivalShader>(layer.product.threshold, layer.product.isochrones);
     return {};

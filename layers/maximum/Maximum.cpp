@@ -9,19 +9,16 @@ namespace {
 
 class MaximumShader : public LayerShader {
 public:
-    int textures() const override { return 3; }
     bool usesLut() const override { return true; }
     bool coloursData() const override { return true; }
-    const char* helpers() const override { return products::ProductSource::helpers(); }
     void sample(std::ostream& s, int i, int lut) const override {
-        products::ProductSource::samplePair(s, i);
+        products::ProductSource::sampleProduct(s, i);
         // The value on screen (interpolated in data space as the sequence layer does) against
         // the maximum of the frames up to the pair's first.
-        s << "    vec2 c" << i << " = mix(a" << i << ", b" << i << ", al" << i << ");\n"
-          << "    vec2 d" << i << " = vec2(0.0);\n"
-          << "    if (prodValid(c" << i << ") || prodValid(s" << i << "))\n"
-          << "        d" << i << " = vec2(max(prodValid(c" << i << ") ? prodValue(c" << i
-          << ") : -3.0e38, prodValid(s" << i << ") ? prodValue(s" << i << ") : -3.0e38), 1.0);\n";
+        s << "    vec2 d" << i << " = vec2(0.0);\n"
+          << "    if (sv" << i << " || cv" << i << ")\n"
+          << "        d" << i << " = vec2(max(sv" << i << " ? S" << i << " : -3.0e38, cv" << i
+          << " ? cur" << i << " : -3.0e38), 1.0);\n";
         ScalarSource::appendColour(s, i, lut);
     }
 };
@@ -32,7 +29,7 @@ std::string MaximumKind::plan(const config::Layer& layer, const StoreView& store
                               SourcePlan& out) const {
     if (std::string problem = products::ProductSource::plan(layer, store, out); !problem.empty())
         return problem;
-    out.state = std::make_shared<products::MaximumSoFar>();
+    out.frames = std::make_shared<products::MaximumSoFar>(layer.nodataAs);
     static const auto piece = std::make_shared<MaximumShader>();
     out.piece = piece;
     return {};

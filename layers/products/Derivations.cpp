@@ -11,25 +11,36 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 }  // namespace
 
-void MaximumSoFar::start(std::span<float> state) const {
+void Cumulative::start(std::span<float> state) const {
     std::fill(state.begin(), state.end(), kNaN);
+}
+
+void Cumulative::finish(std::span<const float> state, std::span<const float> next,
+                        std::span<float> out) const {
+    auto onScreen = [&](float v) {
+        return !std::isnan(v) ? v : mNodataAs ? float(*mNodataAs) : kNoValue;
+    };
+    const std::size_t n = state.size() / 2;
+    for (std::size_t i = 0; i < n; ++i) {
+        const float value = state[2 * i], vk = state[2 * i + 1];
+        const bool valid = !std::isnan(value);
+        float* texel = &out[4 * i];
+        texel[0] = valid ? value : 0.0f;
+        texel[1] = onScreen(vk);
+        texel[2] = next.empty() ? texel[1] : onScreen(next[i]);
+        texel[3] = valid ? 1.0f : 0.0f;
+    }
 }
 
 void MaximumSoFar::advance(std::span<float> state, std::span<const float> values, double,
                            double) const {
     for (std::size_t i = 0; i < values.size(); ++i) {
         const float v = values[i];
+        float& maximum = state[2 * i];
+        state[2 * i + 1] = v;
         if (std::isnan(v)) continue;
-        state[i] = std::isnan(state[i]) ? v : std::max(state[i], v);
+        maximum = std::isnan(maximum) ? v : std::max(maximum, v);
     }
-}
-
-void MaximumSoFar::finish(std::span<const float> state, std::span<float> out) const {
-    std::copy(state.begin(), state.end(), out.begin());
-}
-
-void ArrivalTime::start(std::span<float> state) const {
-    std::fill(state.begin(), state.end(), kNaN);
 }
 
 void ArrivalTime::advance(std::span<float> state, std::span<const float> values, double time,
@@ -42,21 +53,13 @@ void ArrivalTime::advance(std::span<float> state, std::span<const float> values,
         const float v = values[i];
         if (std::isnan(arrival) && !std::isnan(v) && v >= mThreshold) {
             // Crossing inside the interval when the previous frame was valid and below.
-            if (!std::isnan(previous) && previous < mThreshold)
+            if (!mStepwise && !std::isnan(previous) && previous < mThreshold)
                 arrival = t0 + (mThreshold - previous) / (v - previous) * (t1 - t0);
             else
                 arrival = t1;
         }
         previous = v;
     }
-}
-
-void ArrivalTime::finish(std::span<const float> state, std::span<float> out) const {
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = state[2 * i];
-}
-
-void DurationAbove::start(std::span<float> state) const {
-    std::fill(state.begin(), state.end(), kNaN);
 }
 
 void DurationAbove::advance(std::span<float> state, std::span<const float> values, double time,
@@ -71,7 +74,9 @@ void DurationAbove::advance(std::span<float> state, std::span<const float> value
             // Fraction of the interval the linear value spends at or above the threshold.
             double f = 0.0;
             const bool a = previous >= mThreshold, b = v >= mThreshold;
-            if (a && b) {
+            if (mStepwise) {
+                f = a ? 1.0 : 0.0;
+            } else if (a && b) {
                 f = 1.0;
             } else if (a != b) {
                 const double s = (double(mThreshold) - previous) / (double(v) - previous);
@@ -81,10 +86,6 @@ void DurationAbove::advance(std::span<float> state, std::span<const float> value
         }
         previous = v;
     }
-}
-
-void DurationAbove::finish(std::span<const float> state, std::span<float> out) const {
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = state[2 * i];
 }
 
 int HazardCurves::classOf(double depth, double velocity) {

@@ -3,11 +3,12 @@
 #include "runtime/loader/Derivation.h"
 
 #include <array>
+#include <optional>
 #include <string>
 
 // The loader-side half of the derived products (docs/products.md): each turns the stored frames
-// of a sequence into the state the product's shader combines with the frame pair on screen.
-// Times are in the product's time unit since its origin (the clock start), so RG16F keeps a
+// of a sequence into the state the product's shader combines with the value on screen. Times are
+// in the product's time unit since its origin (the clock start), so a 16-bit float keeps a
 // relative precision of 1/2048 of the value (under 2 min at 48 h).
 namespace kiosk::layers::products {
 
@@ -18,60 +19,80 @@ struct TimeAxis {
     float at(double epochSeconds) const { return float((epochSeconds - origin) / unit); }
 };
 
-/** @brief Maximum so far: max of the valid values of frames 0..k (NaN where none was valid). */
-class MaximumSoFar final : public loader::Derivation {
+/**
+ * @brief What the cumulative products share: a state of (value, frame k's value) per post and
+ * the tile's texels, per post (r, g, b, a) = (value x valid, v_k, v_k+1, valid) where valid says
+ * the state has a value and v are the frames on screen (nodata: the layer's nodataAs, else
+ * kNoValue, below any threshold and any maximum). The shader reads all four from one texel.
+ */
+class Cumulative : public loader::Derivation {
 public:
-    int stateFloats() const override { return 1; }
+    /** @brief A frame value standing for nodata on screen (half-float range, far below data). */
+    static constexpr float kNoValue = -60000.0f;
+    explicit Cumulative(std::optional<double> nodataAs) : mNodataAs(nodataAs) {}
+    int stateFloats() const override { return 2; }  // value, frame k's value
     void start(std::span<float> state) const override;
+    void finish(std::span<const float> state, std::span<const float> next,
+                std::span<float> out) const override;
+
+protected:
+    std::optional<double> mNodataAs;
+};
+
+/** @brief Maximum so far: max of the valid values of frames 0..k (none where none was valid). */
+class MaximumSoFar final : public Cumulative {
+public:
+    using Cumulative::Cumulative;
     void advance(std::span<float> state, std::span<const float> values, double time,
                  double previousTime) const override;
-    void finish(std::span<const float> state, std::span<float> out) const override;
 };
 
 /**
  * @brief Arrival time: the first time the value reaches `threshold`, interpolated linearly
  * between the two frames around the crossing (the value itself is interpolated so on screen);
- * at the first frame, or after a nodata frame, the frame's own time. NaN: not yet.
- * Nodata counts as below the threshold.
+ * at the first frame, after a nodata frame, or for class data (`stepwise`: burn states are not
+ * interpolated), the frame's own time. None: not yet. Nodata counts as below the threshold.
  */
-class ArrivalTime final : public loader::Derivation {
+class ArrivalTime final : public Cumulative {
 public:
-    ArrivalTime(double threshold, TimeAxis axis) : mThreshold(float(threshold)), mAxis(axis) {}
-    int stateFloats() const override { return 2; }  // arrival, previous value
-    void start(std::span<float> state) const override;
+    ArrivalTime(double threshold, TimeAxis axis, std::optional<double> nodataAs, bool stepwise)
+        : Cumulative(nodataAs), mThreshold(float(threshold)), mAxis(axis), mStepwise(stepwise) {}
     void advance(std::span<float> state, std::span<const float> values, double time,
                  double previousTime) const override;
-    void finish(std::span<const float> state, std::span<float> out) const override;
 
 private:
     float mThreshold;
     TimeAxis mAxis;
+    bool mStepwise;
 };
 
 /**
  * @brief Duration above `threshold` up to frame k: the time the linearly interpolated value
- * spends at or above it (an interval with a nodata end adds nothing). NaN until the pixel has
- * had a valid value.
+ * spends at or above it (an interval with a nodata end adds nothing); for class data
+ * (`stepwise`) a frame's class holds until the next frame. None until the pixel has had a
+ * valid value.
  */
-class DurationAbove final : public loader::Derivation {
+class DurationAbove final : public Cumulative {
 public:
-    DurationAbove(double threshold, double unitSeconds)
-        : mThreshold(float(threshold)), mUnit(unitSeconds) {}
-    int stateFloats() const override { return 2; }  // duration, previous value
-    void start(std::span<float> state) const override;
+    DurationAbove(double threshold, double unitSeconds, std::optional<double> nodataAs,
+                  bool stepwise)
+        : Cumulative(nodataAs),
+          mThreshold(float(threshold)),
+          mUnit(unitSeconds),
+          mStepwise(stepwise) {}
     void advance(std::span<float> state, std::span<const float> values, double time,
                  double previousTime) const override;
-    void finish(std::span<const float> state, std::span<float> out) const override;
 
 private:
     float mThreshold;
     double mUnit;
+    bool mStepwise;
 };
 
 /**
  * @brief Flood hazard class H1..H6 of Australian Rainfall and Runoff 2019 (Book 6 Chapter 7,
  * Table 6.7.4, after Smith, Davey and Cox 2014): the first class whose depth, velocity and
- * depth x velocity limits all hold. Class k (1..6) has limits kDepth[k-1] m, kVelocity[k-1] m/s,
+ * depth x velocity limits all hold. Class k (1..5) has limits kDepth[k-1] m, kVelocity[k-1] m/s,
  * kProduct[k-1] m2/s; H6 has none.
  */
 struct HazardCurves {

@@ -14,28 +14,30 @@ std::string ProductSource::plan(const config::Layer& layer, const StoreView& sto
         return problem;
     if (out.sequence->frameTimes.empty())
         return "sequence \"" + out.sequence->name + "\" has no frames";
-    out.framePair = true;
+    // One derived tile per frame: the frame pair is inside it (no second texture).
+    out.framePair = false;
     // Class data (burn state) switches at the step; values are interpolated as on screen.
     out.interpolation =
         out.sequence->categorical ? anim::Interpolation::Categorical : anim::Interpolation::Data;
     out.timeOrigin =
         std::isnan(store.timeOrigin) ? out.sequence->frameTimes.front() : store.timeOrigin;
     out.timeUnit = layer.product.unitSeconds();
+    out.productClock = true;
     return {};
 }
 
-const char* ProductSource::helpers() {
-    return "// Derived products (layers/products/): a (value x validity, validity) texel.\n"
-           "bool prodValid(vec2 d) { return d.g >= 0.5; }\n"
-           "float prodValue(vec2 d) { return d.r / max(d.g, 1e-6); }\n";
-}
-
-void ProductSource::samplePair(std::ostream& s, int i) {
-    s << "    vec2 a" << i << " = texture(uLayer" << i << ", uv" << i << ").rg;\n"
-      << "    vec2 b" << i << " = texture(uLayerB" << i << ", uv" << i << ").rg;\n"
-      << "    vec2 s" << i << " = texture(uLayerT" << i << ", (vScenePos - uLayerRectT" << i
-      << ".xy) * uLayerRectT" << i << ".zw).rg;\n"
-      << "    float al" << i << " = uLayerParam" << i << ".y;\n";
+void ProductSource::sampleProduct(std::ostream& s, int i) {
+    s << "    vec4 p" << i << " = texture(uLayer" << i << ", uv" << i << ");\n"
+      << "    bool sv" << i << " = p" << i << ".a >= 0.5;\n"
+      << "    float S" << i << " = p" << i << ".r / max(p" << i << ".a, 1e-6);\n"
+      << "    float v0_" << i << " = p" << i << ".g, v1_" << i << " = p" << i << ".b;\n"
+      << "    float al" << i << " = uLayerParam" << i
+      << ".y;\n"
+      // Nodata frames hold -60000 (products::Cumulative::kNoValue). Filtered across a data edge
+      // a texel mixes it in: only the fraction of a texel at the edge may colour wrongly (none
+      // with nodataAs, e.g. depth 0 for dry land).
+      << "    bool cv" << i << " = min(v0_" << i << ", v1_" << i << ") > -1.0e3;\n"
+      << "    float cur" << i << " = mix(v0_" << i << ", v1_" << i << ", al" << i << ");\n";
 }
 
 std::string ProductSource::variable(const SourcePlan& plan) {

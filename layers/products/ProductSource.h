@@ -7,20 +7,21 @@
 namespace kiosk::layers::products {
 
 /**
- * @brief What the product kinds share: the layer's sequence as the frame pair (interpolated in
- * data space as a sequence layer), a cumulative state from the loader at the pair's first frame
- * (uLayerT), the time axis, and GLSL to read the three textures.
+ * @brief What the cumulative product kinds share: one tile per frame k of the layer's sequence,
+ * derived on the loader thread (state after frame k + the frames k and k + 1, one RGBA16F
+ * texel, products::Cumulative), served and committed atomically like a sequence's frames; the
+ * time axis; and the GLSL reading the texel.
  */
 struct ProductSource {
-    /** @brief Plan the sequence pair; the reason if it cannot be served. */
+    /** @brief Plan the product tiles of the sequence; the reason if it cannot be served. */
     static std::string plan(const config::Layer& layer, const StoreView& store, SourcePlan& out);
-    /** @brief GLSL helpers shared by every product (one pointer: emitted once per program). */
-    static const char* helpers();
     /**
-     * @brief Statements defining `vec2 a<i>`, `b<i>` (the pair, (value x valid, valid)),
-     * `s<i>` (the state at the first frame) and `float al<i>` (the pair's blend factor).
+     * @brief Statements reading layer i's product texel: `bool sv<i>` (the state has a value),
+     * `float S<i>` (the state after the pair's first frame), `v0_<i>`, `v1_<i>` (the two frames
+     * on screen), `al<i>` (the blend factor), `bool cv<i>` (both frames hold data) and
+     * `cur<i>` (the value on screen, interpolated in data space as a sequence layer).
      */
-    static void samplePair(std::ostream& s, int i);
+    static void sampleProduct(std::ostream& s, int i);
     /** @brief "depth >= 0.1 m": the sequence's variable, the threshold and its units. */
     static std::string thresholdText(const config::Layer& layer, const SourcePlan& plan);
     /** @brief The sequence's variable ("depth"), or its name when the store records none. */

@@ -56,31 +56,51 @@ Diagnostics DerivedTiles::compute(int binding, const Derivation& d, io::StoreRea
         done = it->first;
     }
     const std::size_t floats = std::size_t(d.stateFloats());
-    for (int j = done + 1; j <= frame; ++j) {
+    // A frame read as the previous request's second frame is not read again.
+    auto read = [&](int j) -> Result<std::vector<float>> {
+        if (j == track.nextFrame) return track.next;
         Result<io::RasterTile> r = reader.readSequenceFrame(sequence, j, id);
         if (!r.ok()) return r.diagnostics;
+        track.postsX = r->postsX;
+        track.postsY = r->postsY;
+        return std::move(r->values);
+    };
+    for (int j = done + 1; j <= frame; ++j) {
+        Result<std::vector<float>> values = read(j);
+        if (!values.ok()) return values.diagnostics;
         if (state.empty()) {
-            track.postsX = r->postsX;
-            track.postsY = r->postsY;
-            state.assign(r->values.size() * floats, 0.0f);
+            state.assign(values->size() * floats, 0.0f);
             d.start(state);
         }
-        if (state.size() != r->values.size() * floats) {
+        if (state.size() != values->size() * floats) {
             diags.error("LOADER_DERIVED_FRAME", reader.info().path, sequence,
                         "frame " + std::to_string(j) + " of tile " + std::to_string(id.level) +
                             "/" + std::to_string(id.column) + "/" + std::to_string(id.row) +
                             " differs in size from the frames before it");
             return diags;
         }
-        d.advance(state, r->values, seq->frameTimes[std::size_t(j)],
+        d.advance(state, *values, seq->frameTimes[std::size_t(j)],
                   j > 0 ? seq->frameTimes[std::size_t(j) - 1] : std::nan(""));
         if ((j + 1) % kCheckpointEvery == 0 && j < frame) keep(track, j, state);
+    }
+    std::vector<float> next;
+    if (std::size_t(frame) + 1 < seq->frameTimes.size()) {
+        Result<std::vector<float>> values = read(frame + 1);
+        if (!values.ok()) return values.diagnostics;
+        next = std::move(*values.value);
+        if (next.size() * floats != state.size()) next.clear();
     }
     out.id = id;
     out.postsX = track.postsX;
     out.postsY = track.postsY;
-    out.values.assign(state.size() / floats, 0.0f);
-    d.finish(state, out.values);
+    out.channels = loader::Derivation::kProductChannels;
+    out.values.assign(state.size() / floats * std::size_t(out.channels), 0.0f);
+    d.finish(state, next, out.values);
+    track.nextFrame = next.empty() ? -1 : frame + 1;
+    const std::size_t was = track.next.size() * sizeof(float), now = next.size() * sizeof(float);
+    track.bytes = track.bytes - was + now;
+    mBytes = mBytes - was + now;
+    track.next = std::move(next);
     keep(track, frame, state);
     evict(key);
     return diags;

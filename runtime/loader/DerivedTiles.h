@@ -31,8 +31,9 @@ public:
     std::size_t bytes() const noexcept { return mBytes; }
 
     /**
-     * @brief The derived values of frame `frame` of `sequence` on tile `id` (binding `binding`)
-     * into `out` (one float per post), reading frames from `reader`. Errors name the frame read.
+     * @brief The product tile of frame `frame` of `sequence` on tile `id` (binding `binding`)
+     * into `out` (Derivation::kProductChannels floats per post: the state after the frame and
+     * the frame pair), reading frames from `reader`. Errors name the frame read.
      */
     Diagnostics compute(int binding, const Derivation& d, io::StoreReader& reader,
                         const std::string& sequence, int frame, const TileId& id,
@@ -49,6 +50,8 @@ private:
         std::uint64_t lastUse = 0;
         std::size_t bytes = 0;
         int postsX = 0, postsY = 0;  ///< the tile's raster size (every frame's)
+        int nextFrame = -1;          ///< frame held in `next` (read as the pair's second)
+        std::vector<float> next;
     };
     void keep(Track& t, int frame, const std::vector<float>& state);
     void evict(const Key& keepKey);

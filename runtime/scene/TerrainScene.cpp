@@ -246,12 +246,17 @@ void TerrainScene::uploadPayload(terrain::TileHandle handle, terrain::TilePayloa
         payload.image->rgba = {};
     } else if (payload.raster) {
         const auto& r = *payload.raster;
-        bytes = std::max<std::size_t>(std::size_t(r.postsX) * std::size_t(r.postsY) * 4, 1);  // RG16F
+        // RG16F (value, validity), or RGBA16F for a derived product's tile (4 channels).
+        bytes = std::max<std::size_t>(
+            std::size_t(r.postsX) * std::size_t(r.postsY) * (r.channels == 4 ? 8 : 4), 1);
         if (!mCache->reserveGpu(handle, bytes)) return;
         std::optional<float> nodataAs;
         for (const auto& l : mLayers)
             if (l.keyLayer == int(payload.key.layer)) nodataAs = l.nodataAs;
-        slot.texture = render::makeScalarTexture(r.postsX, r.postsY, r.values.data(), nodataAs);
+        slot.texture =
+            r.channels == 4
+                ? render::makeProductTexture(r.postsX, r.postsY, r.values.data())
+                : render::makeScalarTexture(r.postsX, r.postsY, r.values.data(), nodataAs);
         slot.postsX = r.postsX;
         slot.postsY = r.postsY;
         payload.raster->values = {};
@@ -513,6 +518,8 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
                     const auto& bb = mSelection->textures[t.firstTexture + std::uint32_t(l.specB)];
                     b.textureB = bb.handle.valid() ? mGpu[bb.handle.index()].texture.id() : b.texture;
                     b.alpha = float(l.shown.alpha);
+                } else if (l.sequence) {
+                    b.alpha = float(l.shown.alpha);  // products: the pair is in one texel
                 }
                 if (l.specT >= 0) bindArrival(l, t, b);
                 if (l.productClock) {

@@ -233,10 +233,7 @@ private:
         std::vector<std::uint8_t> aheadRequested;  ///< per frame: planned ahead, not yet shown
         std::size_t lastI0 = SIZE_MAX, lastI1 = SIZE_MAX;  ///< pair shown last frame
         bool lastHolding = false;
-        /**
-         * @brief interpolate "arrival": key layer and texture spec of the pair thresholds;
-         * derived products: of their state at the pair's first frame.
-         */
+        /** @brief interpolate "arrival": key layer and texture spec of the pair thresholds. */
         int keyLayerT = -1, specT = -1;
         /** @brief Products: uLayerProduct = (first frame, interval) in timeUnit s since origin. */
         bool productClock = false;

@@ -118,15 +118,6 @@ void TerrainScene::buildLayerStack(std::vector<loader::LayerBinding>& bindings,
                 sl.specB = int(setup.textures.size());
                 setup.textures.push_back({std::uint16_t(sl.keyLayer), 0, plan.maxLevel});
             }
-            if (plan.state) {
-                // A derived product's state at the pair's first frame (loader thread), served
-                // and committed with the pair like the arrival thresholds below.
-                sl.keyLayerT = int(bindings.size());
-                bindings.push_back(
-                    {plan.table, io::LayerKind::Sequence, false, std::nullopt, store, plan.state});
-                sl.specT = int(setup.textures.size());
-                setup.textures.push_back({std::uint16_t(sl.keyLayerT), 0, plan.maxLevel});
-            }
             sl.productClock = plan.productClock;
             sl.timeOrigin = plan.timeOrigin;
             sl.timeUnit = plan.timeUnit;
@@ -175,6 +166,10 @@ void TerrainScene::buildLayerStack(std::vector<loader::LayerBinding>& bindings,
     }
     for (std::size_t i = 0; i < mLayers.size(); ++i)
         if (mLayers[i].sequence && mLayers[i].specB >= 0 && mFirstSequenceLayer == SIZE_MAX)
+            mFirstSequenceLayer = i;
+    // A stack of products only (their frame pair is inside one derived tile): the first of them.
+    for (std::size_t i = 0; i < mLayers.size(); ++i)
+        if (mLayers[i].sequence && mLayers[i].productClock && mFirstSequenceLayer == SIZE_MAX)
             mFirstSequenceLayer = i;
     // Blend references and lenses name layers by id; resolve to stack indices.
     auto stackIndex = [&](const std::string& id) {

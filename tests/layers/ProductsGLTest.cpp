@@ -1,7 +1,8 @@
 // Derived products (issue 19) on real data: the ANUGA cairns run imported as a depth sequence.
-// For sampled posts of a tile, the product layer's shader is drawn with that post's frame pair
-// and the loader's state (layers/products/Derivations through loader::DerivedTiles, as the
-// scene serves them) and the pixel is compared with the LUT colour of an independent
+// For sampled posts of a tile, the product layer's shader is drawn with that post's texel of the
+// loader's product tile (layers/products/Derivations through loader::DerivedTiles, as the scene
+// serves them: the state after the pair's first frame and the two frames) and the pixel is
+// compared with the LUT colour of an independent
 // computation over the raw frames (brute-force sampling of the linear series, not the
 // product's closed forms): maximum and duration within 1 DN, arrival within one frame step.
 // Also: the running state resumed across seeks equals a cold computation, and the ARR hazard
@@ -144,7 +145,7 @@ protected:
         }
     }
 
-    /** Plan a product layer of `kind` with the loader's state for frame kFrame. */
+    /** Plan a product layer of `kind` with the loader's product tile of frame kFrame. */
     struct Planned {
         SourcePlan plan;
         io::RasterTile state;
@@ -158,6 +159,7 @@ protected:
         layer.product.threshold = threshold;
         layer.product.hasThreshold = true;
         layer.product.timeUnits = "min";
+        layer.nodataAs = 0.0;  // as the scenarios: a dry cell counts as depth 0
         const std::string elevation = "elevation";
         StoreView view{mReader->info(), elevation};
         view.timeOrigin = kStart;
@@ -166,31 +168,25 @@ protected:
         EXPECT_NE(k, nullptr);
         if (!k) return p;
         EXPECT_EQ(k->plan(layer, view, p.plan), "");
-        EXPECT_TRUE(p.plan.state);
-        if (!p.plan.state) return p;
+        EXPECT_TRUE(p.plan.frames);
+        if (!p.plan.frames) return p;
         loader::DerivedTiles tiles;
-        Diagnostics d = tiles.compute(1, *p.plan.state, *mReader, "flood", kFrame, mTile, p.state);
+        Diagnostics d = tiles.compute(1, *p.plan.frames, *mReader, "flood", kFrame, mTile, p.state);
+        EXPECT_EQ(p.state.channels, 4);
         EXPECT_FALSE(d.hasErrors()) << d.format();
         return p;
     }
 
-    /** Draw the product with post `i`'s pair and state everywhere; the centre pixel. */
+    /** Draw the product with post `i`'s texel everywhere; the centre pixel. */
     glm::ivec3 drawPost(render::TerrainRenderer& r, const Planned& p, std::size_t i) {
-        auto one = [](float v) {
-            const float q[4] = {v, v, v, v};
-            return render::makeScalarTexture(2, 2, q, 0.0f);  // nodataAs 0, as the scenario
-        };
-        auto a = one(mFrames[kFrame][i]), b = one(mFrames[kFrame + 1][i]);
-        const float s = p.state.values[i];
-        const float sq[4] = {s, s, s, s};
-        auto t = render::makeScalarTexture(2, 2, sq, std::nullopt);
+        float texel[16];
+        for (int k = 0; k < 16; ++k) texel[k] = p.state.values[i * 4 + std::size_t(k % 4)];
+        auto t = render::makeProductTexture(2, 2, texel);
         render::LayerBinding lb;
-        lb.texture = a.id();
-        lb.textureB = b.id();
-        lb.textureT = t.id();
-        lb.west = lb.westT = 0;
-        lb.north = lb.northT = 1000;
-        lb.width = lb.height = lb.widthT = lb.heightT = 1000;
+        lb.texture = t.id();
+        lb.west = 0;
+        lb.north = 1000;
+        lb.width = lb.height = 1000;
         lb.alpha = float(kAlpha);
         lb.valid = true;
         lb.product = glm::vec4(float(minutes(kFrame)), float(minutes(kFrame + 1) - minutes(kFrame)),
@@ -325,7 +321,7 @@ TEST_F(ProductsGLTest, ArrivalTimeWithinOneFrameStep) {
 // The loader's running state resumed after seeks (forwards, far back, forwards again) equals a
 // cold computation: the product depends on the frame only, never on the order of requests.
 TEST_F(ProductsGLTest, RunningStateAfterSeeksEqualsColdComputation) {
-    products::DurationAbove duration(0.3, 60.0);
+    products::DurationAbove duration(0.3, 60.0, 0.0, false);
     loader::DerivedTiles warm;
     io::RasterTile out;
     for (int f : {5, 40, 12, 41, 17, 30}) {
