@@ -63,3 +63,14 @@ cat >"$data/synthetic4k.json" <<'JSON'
                 "transfer": "relief" } ] }
 JSON
 "$BUILD/bench/bench-occlusion" "$data/synthetic4k.json"
+# Impostors (issue 20): far terrain drawn vs not drawn (far plane cut) vs a one-fetch quad over
+# its pixels, alternating passes: the upper bound of any impostor win on llvmpipe.
+"$BUILD/bench/bench-impostor" scenarios/demo/rainier.json --view 594500,5189560,1800,120,-8,40000
+"$BUILD/bench/bench-impostor" "$data/synthetic4k.json" --view 520480,5279520,2289,0,-6,12000
+# GPU texture compression (issue 20): ASTC 4x4 (astcenc) PSNR per imagery layer, encode cost,
+# and what llvmpipe holds per compressed texture vs RGBA8 (built when libastcenc-dev is there).
+if [[ -x "$BUILD/bench/bench-texcompress" ]]; then
+    "$BUILD/bench/bench-texcompress" data/generated/rainier.gpkg
+else
+    echo '{"benchmark":"texture_compression","skipped":"libastcenc-dev not installed"}'
+fi

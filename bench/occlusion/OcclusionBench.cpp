@@ -12,6 +12,7 @@
 #include "runtime/core/Strings.h"
 #include "runtime/gl/RenderTarget.h"
 
+#include "bench/common/BenchArgs.h"
 #include "bench/common/HeadlessGl.h"
 #include <nlohmann/json.hpp>
 
@@ -54,53 +55,19 @@ nlohmann::json report(const Mode& m) {
             {"occlusion_ms_p50", app::percentile(m.occlusionMs, 50)}};
 }
 
-bool parseView(const std::string& text, math::Viewpoint& vp) {
-    double v[6];
-    const char* p = text.c_str();
-    for (int i = 0; i < 6; ++i) {
-        char* end = nullptr;
-        v[i] = std::strtod(p, &end);
-        if (end == p || (i < 5 && *end != ',') || (i == 5 && *end)) return false;
-        p = end + 1;
-    }
-    vp = {glm::dvec3(v[0], v[1], v[2]), v[3], v[4], v[5]};
-    return true;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
+    bench::ViewBenchArgs args;
+    if (!bench::parseViewBenchArgs(argc, argv, "bench-occlusion", args)) {
         std::fprintf(stderr,
                      "usage: bench-occlusion SCENARIO [--view X,Y,Z,HEADING,PITCH,RANGE]... "
                      "[--size WxH] [--frames N] [--passes N]\n");
         return 2;
     }
-    const std::string scenario = argv[1];
-    std::vector<math::Viewpoint> views;
-    int w = 1280, h = 720, perPass = 5, passes = 4;
-    for (int i = 2; i < argc; ++i) {
-        const bool more = i + 1 < argc;
-        if (!std::strcmp(argv[i], "--view") && more) {
-            math::Viewpoint vp;
-            if (!parseView(argv[++i], vp)) {
-                std::fprintf(stderr, "bench-occlusion: --view wants X,Y,Z,HEADING,PITCH,RANGE\n");
-                return 2;
-            }
-            views.push_back(vp);
-        } else if (!std::strcmp(argv[i], "--size") && more) {
-            const auto wh = parseSize(argv[++i]);
-            if (!wh) return 2;
-            std::tie(w, h) = *wh;
-        } else if (!std::strcmp(argv[i], "--frames") && more) {
-            perPass = std::max(1, std::atoi(argv[++i]));
-        } else if (!std::strcmp(argv[i], "--passes") && more) {
-            passes = std::max(1, std::atoi(argv[++i]));
-        } else {
-            std::fprintf(stderr, "bench-occlusion: unknown argument %s\n", argv[i]);
-            return 2;
-        }
-    }
+    const std::string& scenario = args.scenario;
+    std::vector<math::Viewpoint>& views = args.views;
+    const int w = args.width, h = args.height, perPass = args.frames, passes = args.passes;
     auto headless = bench::openHeadlessGl();
     if (!headless) return 3;
     auto target = gl::RenderTarget::create(w, h);
