@@ -91,6 +91,45 @@ bool StoreTileLoader::loadStoredMesh(const LayerBinding& layer, const TileId& id
     return false;
 }
 
+bool StoreTileLoader::loadTin(const LayerBinding& layer, const TileId& id, int tier,
+                              terrain::TilePayload& p) {
+    if (mOptions.fullResolution) return false;  // the reference draws the posts
+    Result<bool> row = mReader->readTileTin(layer.name, id, mTinRow);
+    if (row.ok() && !*row) return false;
+    if (row.ok()) {
+        const std::optional<io::TileStats> stats = mReader->tileStats(layer.name, id);
+        if (!stats) return false;  // absent or broken tile: readElevation says which
+        const double error = double(stats->geometricError);
+        // The TIN holds its posts within its build tolerance: it serves every tier at least
+        // that coarse (a finer tier, i.e. other TerrainOptions, meshes the grid).
+        if (mOptions.tinTolerance(error, tier) < mTinRow.tolerance * (1 - 1e-9)) return false;
+        const io::TileGrid& grid = mReader->info().grid;
+        const double skirt = mOptions.skirtDepth(grid, id.level, error, tier);
+        Diagnostics d =
+            mTins.build(mTinRow.mesh, id, grid, mTinRow.tolerance, skirt, p.mesh.emplace());
+        if (!d.hasErrors()) {
+            p.stats = stats;
+            // Lines can stand above or below the posts: the bounds must hold the TIN.
+            p.stats->minValue = std::min(p.stats->minValue, p.mesh->minZ);
+            p.stats->maxValue = std::max(p.stats->maxValue, p.mesh->maxZ);
+            return true;
+        }
+        p.mesh.reset();
+        for (Diagnostic e : d.items()) {
+            e.file = mReader->info().path;
+            e.where = tileName(layer.name, id);
+            row.diagnostics.add(std::move(e));
+        }
+    }
+    // The posts are intact: draw the grid mesh and say once for the tile why.
+    for (Diagnostic e : row.diagnostics.items()) {
+        e.severity = Severity::Warning;
+        e.message += " (grid mesh drawn instead)";
+        p.diagnostics.add(std::move(e));
+    }
+    return false;
+}
+
 StoreTileLoader::StoreTileLoader(StoreOpener opener, std::vector<LayerBinding> layers,
                                  terrain::TerrainOptions options)
     : StoreTileLoader(std::vector<StoreOpener>{std::move(opener)}, std::move(layers), options) {}
@@ -156,6 +195,7 @@ TilePayload StoreTileLoader::load(const LoadRequest& request) {
     switch (layer.kind) {
         case io::LayerKind::Elevation: {
             // The elevation key's frame is the mesh's tolerance tier (TerrainOptions).
+            if (loadTin(layer, id, std::max(0, int(request.key.frame)), p)) break;
             if (loadStoredMesh(layer, id, std::max(0, int(request.key.frame)), p)) break;
             Result<io::RasterTile> r = mReader->readElevation(layer.name, id);
             if (!r.ok()) {
