@@ -48,16 +48,8 @@ struct TileFrame {
 };
 
 TileFrame frameOf(const io::TileGrid& grid, const TileId& id) {
-    TileFrame f;
-    double x0, y0, x1, y1;
-    grid.tileBounds(id, x0, y0, x1, y1);
-    const io::TileMatrix& m = grid.levels[std::size_t(id.level)];
-    f.x0 = x0;
-    f.y1 = y1;
-    f.px = m.pixelXSize;
-    f.py = m.pixelYSize;
-    f.n = m.tileWidth;
-    return f;
+    const terrain::MeshParams m = terrain::MeshParams::forTile(grid, id, {}, 0.0);
+    return {m.originX, m.originY, m.pixelX, m.pixelY, grid.levels[std::size_t(id.level)].tileWidth};
 }
 
 struct TinJob {

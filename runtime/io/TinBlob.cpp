@@ -1,9 +1,10 @@
 #include "runtime/io/TinBlob.h"
 
+#include "runtime/io/MeshStreams.h"
+
 #include <cmath>
 #include <cstring>
 #include <meshoptimizer.h>
-#include <mutex>
 
 namespace kiosk::io {
 
@@ -29,13 +30,6 @@ struct PackedVertex {
 };
 static_assert(sizeof(PackedVertex) == kVertexBytes);
 
-void putU32(std::vector<std::uint8_t>& b, std::size_t at, std::uint32_t v) {
-    for (int i = 0; i < 4; ++i) b[at + std::size_t(i)] = std::uint8_t(v >> (8 * i));
-}
-std::uint32_t getU32(const std::uint8_t* p) {
-    return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 |
-           std::uint32_t(p[3]) << 24;
-}
 std::int8_t snorm8(float v) {
     return std::int8_t(std::lround(std::fmax(-1.0f, std::fmin(1.0f, v)) * 127.0f));
 }
@@ -43,8 +37,6 @@ std::int8_t snorm8(float v) {
 }  // namespace
 
 std::vector<std::uint8_t> encodeTinBlob(const TinMesh& mesh) {
-    static std::once_flag once;
-    std::call_once(once, [] { meshopt_encodeIndexVersion(1); });
     const std::size_t count = mesh.vertexCount();
     std::vector<PackedVertex> packed(count);
     for (std::size_t v = 0; v < count; ++v) {
@@ -57,33 +49,16 @@ std::vector<std::uint8_t> encodeTinBlob(const TinMesh& mesh) {
         p.n[3] = 0;
     }
     std::vector<std::uint32_t> indices = mesh.indices;
-    std::size_t vCount = count;
-    if (count > 0 && !indices.empty()) {
-        std::vector<PackedVertex> fetched(count);
-        vCount = meshopt_optimizeVertexFetch(fetched.data(), indices.data(), indices.size(),
-                                             packed.data(), count, kVertexBytes);
-        fetched.resize(vCount);
-        packed = std::move(fetched);
-    }
-    std::vector<std::uint8_t> vStream(meshopt_encodeVertexBufferBound(vCount, kVertexBytes));
-    vStream.resize(vCount ? meshopt_encodeVertexBuffer(vStream.data(), vStream.size(),
-                                                       packed.data(), vCount, kVertexBytes)
-                          : 0);
-    std::vector<std::uint8_t> iStream(meshopt_encodeIndexBufferBound(indices.size(), vCount));
-    iStream.resize(indices.empty() ? 0
-                                   : meshopt_encodeIndexBuffer(iStream.data(), iStream.size(),
-                                                               indices.data(), indices.size()));
-    std::vector<std::uint8_t> blob(kHeaderBytes + vStream.size() + iStream.size());
+    const MeshStreams streams = encodeMeshStreams(packed.data(), count, kVertexBytes, indices);
+    std::vector<std::uint8_t> blob = blobWithStreams(kHeaderBytes, streams);
     std::memcpy(blob.data(), kMagic, 4);
     putU32(blob, 4, kVersion);
     putU32(blob, 8, std::uint32_t(mesh.postIntervals));
-    putU32(blob, 12, std::uint32_t(vCount));
+    putU32(blob, 12, std::uint32_t(streams.vertexCount));
     putU32(blob, 16, std::uint32_t(indices.size()));
-    putU32(blob, 20, std::uint32_t(vStream.size()));
-    putU32(blob, 24, std::uint32_t(iStream.size()));
+    putU32(blob, 20, std::uint32_t(streams.vertices.size()));
+    putU32(blob, 24, std::uint32_t(streams.indices.size()));
     putU32(blob, 28, mesh.fullBorder ? kFlagFullBorder : 0u);
-    std::memcpy(blob.data() + kHeaderBytes, vStream.data(), vStream.size());
-    std::memcpy(blob.data() + kHeaderBytes + vStream.size(), iStream.data(), iStream.size());
     return blob;
 }
 

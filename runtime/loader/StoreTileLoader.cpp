@@ -27,6 +27,27 @@ void markFailure(TilePayload& p, Diagnostics d) {
     p.diagnostics.append(d);
 }
 
+// Diagnostics of building a tile's mesh, placed in the store file and the tile.
+Diagnostics namedAfter(Diagnostics d, const std::string& file, const std::string& where) {
+    Diagnostics out;
+    for (Diagnostic e : d.items()) {
+        e.file = file;
+        e.where = where;
+        out.add(std::move(e));
+    }
+    return out;
+}
+
+// A stored form of the tile that cannot be used while the posts can: warnings, with what is
+// drawn instead.
+void warnInstead(const Diagnostics& d, const std::string& instead, TilePayload& p) {
+    for (Diagnostic e : d.items()) {
+        e.severity = Severity::Warning;
+        e.message += instead;
+        p.diagnostics.add(std::move(e));
+    }
+}
+
 }  // namespace
 
 void StoreTileLoader::loadArrivalThresholds(const LayerBinding& layer, int frame,
@@ -75,19 +96,12 @@ bool StoreTileLoader::loadStoredMesh(const LayerBinding& layer, const TileId& id
             return true;
         }
         p.mesh.reset();
-        for (Diagnostic e : d.items()) {
-            e.file = mReader->info().path;
-            e.where = tileName(layer.name, id);
-            row.diagnostics.add(std::move(e));
-        }
+        row.diagnostics.append(
+            namedAfter(std::move(d), mReader->info().path, tileName(layer.name, id)));
     }
     // A corrupt stored mesh costs only the time to mesh the posts, which are intact: say so
     // once for the tile and draw it anyway.
-    for (Diagnostic e : row.diagnostics.items()) {
-        e.severity = Severity::Warning;
-        e.message += " (meshed from the posts instead)";
-        p.diagnostics.add(std::move(e));
-    }
+    warnInstead(row.diagnostics, " (meshed from the posts instead)", p);
     return false;
 }
 
@@ -115,18 +129,11 @@ bool StoreTileLoader::loadTin(const LayerBinding& layer, const TileId& id, int t
             return true;
         }
         p.mesh.reset();
-        for (Diagnostic e : d.items()) {
-            e.file = mReader->info().path;
-            e.where = tileName(layer.name, id);
-            row.diagnostics.add(std::move(e));
-        }
+        row.diagnostics.append(
+            namedAfter(std::move(d), mReader->info().path, tileName(layer.name, id)));
     }
     // The posts are intact: draw the grid mesh and say once for the tile why.
-    for (Diagnostic e : row.diagnostics.items()) {
-        e.severity = Severity::Warning;
-        e.message += " (grid mesh drawn instead)";
-        p.diagnostics.add(std::move(e));
-    }
+    warnInstead(row.diagnostics, " (grid mesh drawn instead)", p);
     return false;
 }
 
@@ -208,11 +215,8 @@ TilePayload StoreTileLoader::load(const LoadRequest& request) {
                 *r, mReader->info().grid, mOptions, mMesher, std::max(0, int(request.key.frame)));
             if (!mesh.ok()) {
                 p.status = TilePayload::Status::Failed;
-                for (Diagnostic d : mesh.diagnostics.items()) {
-                    d.file = mReader->info().path;
-                    d.where = tileName(layer.name, id);
-                    p.diagnostics.add(std::move(d));
-                }
+                p.diagnostics.append(namedAfter(std::move(mesh.diagnostics), mReader->info().path,
+                                                tileName(layer.name, id)));
                 return p;
             }
             p.mesh = std::move(*mesh.value);

@@ -4,7 +4,6 @@
 // of a gentle slope with one sharp levee along a diagonal whose crest falls between posts, and a
 // GeoJSON line along the crest with the crest's true height (3D) or without (2D). Written by
 // the tests, header-only (GDAL's C API).
-#include <cpl_conv.h>
 #include <gdal.h>
 #include <ogr_srs_api.h>
 
@@ -39,17 +38,6 @@ inline double crestHeight(double x, double y) {
     return ground(x, y) + kHeightM;
 }
 
-inline std::string utm10Wkt() {
-    OGRSpatialReferenceH s = OSRNewSpatialReference(nullptr);
-    OSRImportFromEPSG(s, 32610);
-    char* w = nullptr;
-    OSRExportToWkt(s, &w);
-    std::string out = w;
-    CPLFree(w);
-    OSRDestroySpatialReference(s);
-    return out;
-}
-
 /** @brief The DEM as a GeoTIFF (posts = pixel centres sampled from surface()). */
 inline std::filesystem::path writeDem(const std::filesystem::path& dir) {
     std::vector<float> v(std::size_t(kWidth) * kHeight);
@@ -63,7 +51,10 @@ inline std::filesystem::path writeDem(const std::filesystem::path& dir) {
                                  GDT_Float32, nullptr);
     double gt[6] = {kX0, 1.0, 0.0, kY1, 0.0, -1.0};
     GDALSetGeoTransform(ds, gt);
-    GDALSetProjection(ds, utm10Wkt().c_str());
+    OGRSpatialReferenceH utm = OSRNewSpatialReference(nullptr);
+    OSRImportFromEPSG(utm, 32610);  // UTM 10N
+    GDALSetSpatialRef(ds, utm);
+    OSRDestroySpatialReference(utm);
     CPLErr e = GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, 0, kWidth, kHeight, v.data(),
                             kWidth, kHeight, GDT_Float32, 0, 0);
     (void)e;
