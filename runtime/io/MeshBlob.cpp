@@ -60,13 +60,8 @@ std::vector<std::uint8_t> encodeMeshBlob(const QuantizedMesh& mesh) {
     std::vector<std::uint32_t> indices = mesh.indices;
     const MeshStreams streams = encodeMeshStreams(packed.data(), count, kVertexBytes, indices);
     std::vector<std::uint8_t> blob = blobWithStreams(kHeaderBytes, streams);
-    std::memcpy(blob.data(), kMagic, 4);
-    putU32(blob, 4, kVersion);
-    putU32(blob, 8, std::uint32_t(mesh.postIntervals));
-    putU32(blob, 12, std::uint32_t(streams.vertexCount));
-    putU32(blob, 16, std::uint32_t(indices.size()));
-    putU32(blob, 20, std::uint32_t(streams.vertices.size()));
-    putU32(blob, 24, std::uint32_t(streams.indices.size()));
+    putStreamHeader(blob, kMagic, kVersion, std::uint32_t(mesh.postIntervals), streams,
+                    indices.size());
     putU32(blob, 28, mesh.splitTiers.empty() ? 0u : kFlagSplitTiers);
     putF64(blob, 32, mesh.zOffset);
     putF64(blob, 40, mesh.zScale);
@@ -88,14 +83,12 @@ Diagnostics decodeMeshBlob(const std::uint8_t* data, std::size_t size, const std
         d.error("STORE_MESH_CORRUPT", "", where, "stored mesh " + what);
         return d;
     };
-    if (!data || size < kHeaderBytes) return corrupt("is shorter than its header");
-    if (size > kMaxMeshBlobBytes) return corrupt("is larger than 16 MiB");
-    if (std::memcmp(data, kMagic, 4) != 0) return corrupt("does not start with 'KMSH'");
-    if (getU32(data + 4) != kVersion)
-        return corrupt("has version " + std::to_string(getU32(data + 4)) + " (this reads 1)");
-    const std::uint32_t n = getU32(data + 8);
-    const std::uint32_t vCount = getU32(data + 12), iCount = getU32(data + 16);
-    const std::uint32_t vBytes = getU32(data + 20), iBytes = getU32(data + 24);
+    StreamHeader h;
+    const std::string bad =
+        readStreamHeader(data, size, kHeaderBytes, kMaxMeshBlobBytes, kMagic, kVersion, h);
+    if (!bad.empty()) return corrupt(bad);
+    const std::uint32_t n = h.postIntervals, vCount = h.vertexCount, iCount = h.indexCount;
+    const std::uint32_t vBytes = h.vertexBytes, iBytes = h.indexBytes;
     const std::uint32_t flags = getU32(data + 28);
     m.zOffset = getF64(data + 32);
     m.zScale = getF64(data + 40);

@@ -43,6 +43,36 @@ MeshStreams encodeMeshStreams(const void* vertices, std::size_t count, std::size
     return s;
 }
 
+void putStreamHeader(std::vector<std::uint8_t>& blob, const char* magic, std::uint32_t version,
+                     std::uint32_t postIntervals, const MeshStreams& streams,
+                     std::size_t indexCount) {
+    std::memcpy(blob.data(), magic, 4);
+    putU32(blob, 4, version);
+    putU32(blob, 8, postIntervals);
+    putU32(blob, 12, std::uint32_t(streams.vertexCount));
+    putU32(blob, 16, std::uint32_t(indexCount));
+    putU32(blob, 20, std::uint32_t(streams.vertices.size()));
+    putU32(blob, 24, std::uint32_t(streams.indices.size()));
+}
+
+std::string readStreamHeader(const std::uint8_t* data, std::size_t size, std::size_t headerBytes,
+                             std::size_t maxBytes, const char* magic, std::uint32_t version,
+                             StreamHeader& out) {
+    if (!data || size < headerBytes) return "is shorter than its header";
+    if (size > maxBytes) return "is larger than " + std::to_string(maxBytes >> 20) + " MiB";
+    if (std::memcmp(data, magic, 4) != 0)
+        return "does not start with '" + std::string(magic, 4) + "'";
+    if (getU32(data + 4) != version)
+        return "has version " + std::to_string(getU32(data + 4)) + " (this reads " +
+               std::to_string(version) + ")";
+    out.postIntervals = getU32(data + 8);
+    out.vertexCount = getU32(data + 12);
+    out.indexCount = getU32(data + 16);
+    out.vertexBytes = getU32(data + 20);
+    out.indexBytes = getU32(data + 24);
+    return {};
+}
+
 std::vector<std::uint8_t> blobWithStreams(std::size_t headerBytes, const MeshStreams& s) {
     std::vector<std::uint8_t> blob(headerBytes + s.vertices.size() + s.indices.size(), 0);
     std::memcpy(blob.data() + headerBytes, s.vertices.data(), s.vertices.size());

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 // What the stored mesh blobs (MeshBlob.h: grid meshes, TinBlob.h: local TINs) share: a
@@ -25,6 +26,30 @@ struct MeshStreams {
  */
 MeshStreams encodeMeshStreams(const void* vertices, std::size_t count, std::size_t stride,
                               std::vector<std::uint32_t>& indices);
+
+/**
+ * @brief The header words both blobs start with: 4-byte magic, u32 version, post intervals,
+ * vertex count, index count, vertex stream bytes, index stream bytes.
+ */
+struct StreamHeader {
+    std::uint32_t postIntervals = 0, vertexCount = 0, indexCount = 0;
+    std::uint32_t vertexBytes = 0, indexBytes = 0;
+};
+inline constexpr std::size_t kStreamHeaderBytes = 28;
+
+/** @brief Write the shared header words of `streams` (`indexCount` indices) into `blob`. */
+void putStreamHeader(std::vector<std::uint8_t>& blob, const char* magic, std::uint32_t version,
+                     std::uint32_t postIntervals, const MeshStreams& streams,
+                     std::size_t indexCount);
+
+/**
+ * @brief Read them from a blob of `size` bytes whose whole header is `headerBytes` long: empty,
+ * or what is wrong ("is shorter than its header", ...) for the caller's corruption message.
+ * The streams' sizes are checked against the blob's later, by the caller.
+ */
+std::string readStreamHeader(const std::uint8_t* data, std::size_t size, std::size_t headerBytes,
+                             std::size_t maxBytes, const char* magic, std::uint32_t version,
+                             StreamHeader& out);
 
 /** @brief A blob of `headerBytes` zero bytes (for the caller's header) and the streams. */
 std::vector<std::uint8_t> blobWithStreams(std::size_t headerBytes, const MeshStreams& streams);
