@@ -41,3 +41,5 @@ fi
 "$BUILD/bench/bench-yuv420"   # the export's RGBA -> YUV 4:2:0 against libswscale (its previous path)
 # Out-of-core at W04 scale (issue 20): SYNTHETIC 16k^2 vs 4k^2 DEM, import, first complete frame, flight.
 /usr/bin/python3 "$ROOT/bench/outofcore/outofcore_bench.py" "$BUILD"
+# Local TINs (issue 20, Baumann 2000): import time, store size, TIN vs grid triangles, frame time with/without.
+/usr/bin/python3 "$ROOT/bench/tins/tins_bench.py" "$BUILD"

@@ -21,31 +21,33 @@ import sqlite3
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
 from osgeo import gdal, osr
 
-ENV = dict(os.environ, __EGL_VENDOR_LIBRARY_FILENAMES="/usr/share/glvnd/egl_vendor.d/50_mesa.json",
-           GALLIUM_DRIVER="llvmpipe")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import procstat  # noqa: E402
 X0, Y1 = 550000.0, 5200000.0
 W, H = 1920, 1600
 A = (X0 + 240.3, Y1 - 282.7)
 B = (X0 + 1680.2, Y1 - 1323.9)
 
 
-def run(argv):
-    t0 = time.monotonic()
-    p = subprocess.Popen(argv, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-    _, status, ru = os.wait4(p.pid, 0)
-    wall = time.monotonic() - t0
-    out = p.stdout.read().decode(errors="replace")
-    err = p.stderr.read().decode(errors="replace")
-    code = os.waitstatus_to_exitcode(status)
-    if code != 0:
-        sys.exit(f"tins_bench: {' '.join(map(str, argv))} exited {code}:\n{err[-2000:]}")
-    return {"seconds": round(wall, 3), "peak_rss_mb": round(ru.ru_maxrss / 1024.0, 1)}, out
+def measured(argv):
+    """An import: wall seconds and its own peak RSS (procstat)."""
+    r = procstat.run(argv)
+    if r["exit"] != 0:
+        sys.exit(f"tins_bench: {' '.join(map(str, argv))} exited {r['exit']}:\n{r['stderr'][-2000:]}")
+    return {"seconds": round(r["wall_s"], 3), "peak_rss_mb": r["peak_rss_mb"]}
+
+
+def json_of(argv):
+    """A benchmark's one JSON object (stdout)."""
+    p = subprocess.run([str(a) for a in argv], env=procstat.MESA_ENV, capture_output=True, text=True)
+    if p.returncode != 0:
+        sys.exit(f"tins_bench: {' '.join(map(str, argv))} exited {p.returncode}:\n{p.stderr[-2000:]}")
+    return json.loads(p.stdout)
 
 
 def ground(x, y):
@@ -103,17 +105,15 @@ def tin_figures(store):
 
 def frames(build, d, name, n):
     best = {}
-    for rnd in range(2):
+    for _ in range(2):
         for variant in ("tin", "grid"):
-            _, out = run([str(build / "bench" / "bench-frame"), str(d / f"{name}-{variant}.json"),
-                          "--sizes", "1280x720", "--frames", str(n), "--no-fullres"])
-            j = json.loads(out)
-            size = j["sizes"][0] if "sizes" in j else j
-            p50 = size.get("frame_ms", {}).get("p50") if isinstance(size.get("frame_ms"), dict) else None
+            j = json_of([build / "bench" / "bench-frame", d / f"{name}-{variant}.json",
+                         "--sizes", "1280x720", "--frames", str(n), "--no-fullres"])
+            r = j["results"][0]
             cur = best.get(variant)
-            if cur is None or (p50 is not None and p50 < cur["frame_ms_p50"]):
-                best[variant] = {"frame_ms_p50": p50, "frame_ms": size.get("frame_ms"),
-                                 "triangles": size.get("triangles")}
+            if cur is None or r["frame_ms"]["p50"] < cur["frame_ms"]["p50"]:
+                best[variant] = {"frame_ms": r["frame_ms"], "triangles_mean": r["triangles_mean"],
+                                 "tiles_mean": r["tiles_mean"]}
     return best
 
 
@@ -121,10 +121,10 @@ def case(build, d, name, elevation_src, tin_args, n):
     gk = str(build / "geokiosk")
     grid, tin = d / f"{name}-grid.gpkg", d / f"{name}-tin.gpkg"
     print(f"tins_bench: {name}: import elevation", file=sys.stderr)
-    run([gk, "import", "elevation", str(elevation_src), "--store", str(grid), "--quiet"])
+    measured([gk, "import", "elevation", str(elevation_src), "--store", str(grid), "--quiet"])
     shutil.copy(grid, tin)
     print(f"tins_bench: {name}: import {tin_args[0]}", file=sys.stderr)
-    imp, _ = run([gk, "import", *tin_args, "--store", str(tin), "--quiet"])
+    imp = measured([gk, "import", *tin_args, "--store", str(tin), "--quiet"])
     scenario(d / f"{name}-tin.json", tin)
     scenario(d / f"{name}-grid.json", grid)
     out = {"tin_import": imp, "store_bytes": tin.stat().st_size,

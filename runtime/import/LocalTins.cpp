@@ -61,9 +61,14 @@ struct TinJob {
     std::vector<std::vector<std::uint32_t>> buckets;  // per post cell: model triangles over it
     std::vector<glm::dvec3> modelPost;                // model points in this tile's post coords
     bool needed = false;
-    double tolerance = 0.0;
-    Result<TileTinResult> result = Diagnostics{};
-    std::vector<std::uint8_t> blob;
+    double tolerance = 0.0;  // tier 0
+    struct Tier {
+        double tolerance = 0.0;
+        TileTinResult tin;
+        std::vector<std::uint8_t> blob;
+    };
+    std::vector<Tier> tiers;  // tier 0 (kiosk_tile_tins has a tier column for coarser ones)
+    Diagnostics error;
     std::size_t gridTriangles = 0;
 };
 
@@ -214,6 +219,20 @@ private:
 
 namespace {
 
+// The tile's TIN at tier 0 (the loader takes it for every coarser tier too). Coarser TINs were
+// tried: their border keeps every border post, so they stayed above ~1000 triangles a tile and
+// cost the import a CGAL build per tier (see docs/terrain.md "Local TINs").
+void buildTiers(TinJob& job) {
+    job.input.tolerance = job.tolerance;
+    Result<TileTinResult> r = buildTileTin(job.input);
+    if (!r) {
+        job.error = std::move(r.diagnostics);
+        return;
+    }
+    std::vector<std::uint8_t> blob = io::encodeTinBlob(r->mesh);
+    job.tiers.push_back({job.tolerance, std::move(*r.value), std::move(blob)});
+}
+
 // Build the jobs' TINs on `threads` threads (the CGAL work), with the grid mesh's triangle
 // count of the same tile for the comparison the import reports.
 void buildJobs(std::vector<TinJob>& jobs, int threads) {
@@ -227,8 +246,7 @@ void buildJobs(std::vector<TinJob>& jobs, int threads) {
                 TinJob& job = jobs[j];
                 if (!job.needed) continue;
                 job.input.posts = &job.posts;
-                job.result = buildTileTin(job.input);
-                if (job.result.ok()) job.blob = io::encodeTinBlob(job.result->mesh);
+                buildTiers(job);
                 terrain::MeshParams p;
                 p.pixelX = job.input.pixelX;
                 p.pixelY = job.input.pixelY;
@@ -284,8 +302,8 @@ Result<LocalTinStats> storeLocalTins(io::StoreWriter& w, const TinFeatures& feat
             ++stats.tilesChecked;
             if (!job.needed) continue;
             const std::string where = io::tileName(o.elevation, job.id);
-            if (!job.result.ok()) {
-                for (Diagnostic e : job.result.diagnostics.items()) {
+            if (job.error.hasErrors()) {
+                for (Diagnostic e : job.error.items()) {
                     e.file = w.path();
                     e.where = where;
                     d.add(std::move(e));
@@ -293,17 +311,21 @@ Result<LocalTinStats> storeLocalTins(io::StoreWriter& w, const TinFeatures& feat
                 return d;
             }
             if (auto other = w.tileTinSource(o.elevation, job.id)) ++replaced[*other];
-            const io::TinMesh& m = job.result->mesh;
-            d.append(w.putTileTin(o.elevation, job.id, o.source, job.tolerance,
-                                  job.result->maxError, m.vertexCount(), m.triangleCount(),
-                                  job.blob));
-            if (d.hasErrors()) return d;
+            for (std::size_t t = 0; t < job.tiers.size(); ++t) {
+                const TinJob::Tier& tier = job.tiers[t];
+                const io::TinMesh& m = tier.tin.mesh;
+                d.append(w.putTileTin(o.elevation, job.id, int(t), o.source, tier.tolerance,
+                                      tier.tin.maxError, m.vertexCount(), m.triangleCount(),
+                                      tier.blob));
+                if (d.hasErrors()) return d;
+                stats.blobBytes += std::int64_t(tier.blob.size());
+                if (t == 0) stats.maxError = std::max(stats.maxError, tier.tin.maxError);
+            }
+            stats.rows += std::int64_t(job.tiers.size());
             ++built;
             ++stats.tiles;
-            stats.tinTriangles += std::int64_t(m.triangleCount());
+            stats.tinTriangles += std::int64_t(job.tiers[0].tin.mesh.triangleCount());
             stats.gridTriangles += std::int64_t(job.gridTriangles);
-            stats.blobBytes += std::int64_t(job.blob.size());
-            stats.maxError = std::max(stats.maxError, job.result->maxError);
             if (stats.finestLevel < 0) stats.finestLevel = level;
             stats.coarsestLevel = level;
         }

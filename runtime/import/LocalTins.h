@@ -43,12 +43,13 @@ struct LocalTinOptions {
 /** @brief What storeLocalTins wrote. */
 struct LocalTinStats {
     std::int64_t tiles = 0;          ///< tiles with a TIN
+    std::int64_t rows = 0;           ///< TINs stored (kiosk_tile_tins rows)
     std::int64_t tilesChecked = 0;   ///< tiles the features cross (over the levels visited)
-    std::int64_t tinTriangles = 0;   ///< over all TIN tiles
+    std::int64_t tinTriangles = 0;   ///< over all TIN tiles, tier 0
     std::int64_t gridTriangles = 0;  ///< the same tiles' grid meshes (tier 0), for comparison
     std::int64_t blobBytes = 0;
     int finestLevel = -1, coarsestLevel = -1;  ///< levels that got TINs (-1: none)
-    double maxError = 0.0;  ///< worst |TIN - post| over the posts the TINs keep (metres)
+    double maxError = 0.0;  ///< worst |TIN - post| over the posts tier-0 TINs keep (metres)
 };
 
 /**
@@ -56,10 +57,11 @@ struct LocalTinStats {
  * `withTempStore`). From the finest level up: a tile the features cross gets a TIN when the
  * grid (bilinear over its posts) misses the features' heights, sampled along them every quarter
  * post, by more than the tile's error bound (stored error e + tier-0 tolerance); the first
- * level where no crossed tile needs one ends the climb. Earlier TINs of the same source are
- * replaced; a tile whose TIN came from another source gets the new one with a warning
- * (IMPORT_TIN_REPLACED). Errors: IMPORT_NO_ELEVATION, IMPORT_TIN_OUTSIDE (no tile with data is
- * crossed), TERRAIN_TIN naming the tile.
+ * level where no crossed tile needs one ends the climb. A tile's TIN is built at tier 0 (its
+ * tolerance t0); the loader draws it for every coarser tier as well. Earlier TINs of
+ * the same source are replaced; a tile whose TIN came from another source gets the new one with a
+ * warning (IMPORT_TIN_REPLACED). Errors: IMPORT_NO_ELEVATION, IMPORT_TIN_OUTSIDE (no tile with data
+ * is crossed), TERRAIN_TIN naming the tile.
  */
 Result<LocalTinStats> storeLocalTins(io::StoreWriter& writer, const TinFeatures& features,
                                      const LocalTinOptions& options, Progress& progress);

@@ -41,8 +41,8 @@ struct TileTinInput {
 /** @brief A built TIN and what it took. */
 struct TileTinResult {
     io::TinMesh mesh;
-    double maxError = 0.0;  ///< largest |TIN - post| over the posts not left out (metres)
-    int rounds = 0;         ///< insertion rounds until every post was within tolerance
+    double maxError = 0.0;          ///< largest |TIN - post| over the posts not left out (metres)
+    int rounds = 0;                 ///< insertion rounds until every post was within tolerance
     std::size_t lineVertices = 0;
 };
 

@@ -291,12 +291,14 @@ private:
     void tins(IntegrityLevel level) {
         if (!elevationTileRows(level, kTileTinsTable, "TINs")) return;
         auto st = mDb.prepare(
-            "SELECT table_name, zoom_level, tile_column, tile_row, tin FROM kiosk_tile_tins");
+            "SELECT table_name, zoom_level, tile_column, tile_row, tin, tier FROM "
+            "kiosk_tile_tins");
         if (!st) return;
         TinMesh m;
         while (st->step() == SQLITE_ROW) {
             const TileId id{int(st->columnInt(1)), int(st->columnInt(2)), int(st->columnInt(3))};
-            const std::string where = tileName(st->columnText(0), id);
+            const std::string where =
+                tileName(st->columnText(0), id) + " tier " + std::to_string(st->columnInt(5));
             const auto [data, size] = st->columnBlob(4);
             Diagnostics r = decodeTinBlob(data, size, where, m);
             std::string problem;

@@ -61,9 +61,10 @@ public:
         return mQueries.readMesh(layer, id, tolerance, baseTolerance, out);
     }
 
-    Result<bool> readTileTin(const std::string& layer, const TileId& id, TileTinRow& out) override {
+    Result<bool> readTileTin(const std::string& layer, const TileId& id, double tolerance,
+                             TileTinRow& out) override {
         if (!mHasTins) return false;
-        return mQueries.readTin(layer, id, out);
+        return mQueries.readTin(layer, id, tolerance, out);
     }
 
 private:

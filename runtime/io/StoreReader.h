@@ -62,11 +62,13 @@ public:
         return false;
     }
     /**
-     * @brief The local TIN stored for an elevation tile (kiosk_tile_tins), into `out` (its
-     * buffers reused); false when the tile has none. STORE_TIN_CORRUPT when it does not decode.
+     * @brief The coarsest local TIN stored for an elevation tile within `tolerance`
+     * (kiosk_tile_tins), into `out` (its buffers reused); false when the tile has none that
+     * fine. STORE_TIN_CORRUPT when it does not decode.
      */
-    virtual Result<bool> readTileTin(const std::string& layer, const TileId& id, TileTinRow& out) {
-        (void)layer, (void)id, (void)out;
+    virtual Result<bool> readTileTin(const std::string& layer, const TileId& id, double tolerance,
+                                     TileTinRow& out) {
+        (void)layer, (void)id, (void)tolerance, (void)out;
         return false;
     }
 };

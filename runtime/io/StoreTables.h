@@ -66,11 +66,12 @@ public:
     Result<bool> readMesh(const std::string& table, const TileId& id, double tolerance,
                           double baseTolerance, TileMeshRow& out);
     /**
-     * @brief Into `out` (buffers reused): the local TIN of a tile (kiosk_tile_tins,
-     * StoreTinQueries.cpp); false when the tile has none. One that does not decode is
-     * STORE_TIN_CORRUPT naming the tile.
+     * @brief Into `out` (buffers reused): the coarsest local TIN of a tile built within
+     * `tolerance` (kiosk_tile_tins, StoreTinQueries.cpp); false when the tile has none that
+     * fine. One that does not decode is STORE_TIN_CORRUPT naming the tile and tier.
      */
-    Result<bool> readTin(const std::string& table, const TileId& id, TileTinRow& out);
+    Result<bool> readTin(const std::string& table, const TileId& id, double tolerance,
+                         TileTinRow& out);
     /** @brief Stats row, nullopt if absent. */
     std::optional<TileStats> stats(const std::string& table, const TileId& id);
 

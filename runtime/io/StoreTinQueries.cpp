@@ -3,12 +3,16 @@
 
 namespace kiosk::io {
 
-Result<bool> TileQueries::readTin(const std::string& table, const TileId& id, TileTinRow& out) {
+Result<bool> TileQueries::readTin(const std::string& table, const TileId& id, double tolerance,
+                                  TileTinRow& out) {
     Diagnostics d;
     if (!mTin.valid()) {
+        // The coarsest TIN within the tolerance; the slack only absorbs a different rounding of
+        // the same product (import and loader compute tolerances alike).
         auto st = mDb->prepare(
-            "SELECT source, tolerance, tin FROM kiosk_tile_tins WHERE table_name = ?1 AND "
-            "zoom_level = ?2 AND tile_column = ?3 AND tile_row = ?4");
+            "SELECT source, tolerance, tin, tier FROM kiosk_tile_tins WHERE table_name = ?1 AND "
+            "zoom_level = ?2 AND tile_column = ?3 AND tile_row = ?4 AND tolerance <= ?5 * (1 + "
+            "1e-9) ORDER BY tolerance DESC LIMIT 1");
         if (!st) return st.diagnostics;
         mTin = std::move(*st);
     }
@@ -17,6 +21,7 @@ Result<bool> TileQueries::readTin(const std::string& table, const TileId& id, Ti
     mTin.bindInt(2, id.level);
     mTin.bindInt(3, id.column);
     mTin.bindInt(4, id.row);
+    mTin.bind(5, tolerance);
     const int rc = mTin.step();
     if (rc == SQLITE_DONE) return false;
     if (rc != SQLITE_ROW) {
@@ -25,8 +30,10 @@ Result<bool> TileQueries::readTin(const std::string& table, const TileId& id, Ti
     }
     out.source = mTin.columnText(0);
     out.tolerance = mTin.columnDouble(1);
+    out.tier = int(mTin.columnInt(3));
     const auto [data, size] = mTin.columnBlob(2);
-    Diagnostics m = decodeTinBlob(data, size, tileName(table, id), out.mesh);
+    Diagnostics m = decodeTinBlob(
+        data, size, tileName(table, id) + " tier " + std::to_string(out.tier), out.mesh);
     mTin.reset();
     if (m.hasErrors()) {
         for (Diagnostic e : m.items()) {

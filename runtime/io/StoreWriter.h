@@ -110,10 +110,11 @@ public:
     Diagnostics deleteTileTins(const std::string& table, const std::string& source);
     /** @brief The source of the TIN a tile has already (nullopt: none). */
     std::optional<std::string> tileTinSource(const std::string& table, const TileId& id);
-    /** @brief Store (or replace) a tile's TIN (encodeTinBlob output). */
-    Diagnostics putTileTin(const std::string& table, const TileId& id, const std::string& source,
-                           double tolerance, double maxError, std::size_t vertices,
-                           std::size_t triangles, const std::vector<std::uint8_t>& blob);
+    /** @brief Store (or replace) a tile's TIN of tolerance tier `tier` (encodeTinBlob output). */
+    Diagnostics putTileTin(const std::string& table, const TileId& id, int tier,
+                           const std::string& source, double tolerance, double maxError,
+                           std::size_t vertices, std::size_t triangles,
+                           const std::vector<std::uint8_t>& blob);
     /** @brief Every tile of a table, coarse levels first (for a pass over a finished layer). */
     Result<std::vector<TileId>> tileIds(const std::string& table);
 

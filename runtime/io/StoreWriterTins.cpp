@@ -5,14 +5,14 @@ namespace kiosk::io {
 
 namespace {
 
-// One TIN per elevation tile: a later import over the same tile replaces it (the importer warns
-// when that TIN came from another source).
+// One TIN per elevation tile and tolerance tier: a later import over the same tile replaces it
+// (the importer warns when that TIN came from another source).
 constexpr const char* kTinSchema = R"SQL(
 CREATE TABLE IF NOT EXISTS kiosk_tile_tins (id INTEGER PRIMARY KEY, table_name TEXT NOT NULL,
   zoom_level INTEGER NOT NULL, tile_column INTEGER NOT NULL, tile_row INTEGER NOT NULL,
-  source TEXT NOT NULL, tolerance DOUBLE NOT NULL, max_error DOUBLE NOT NULL,
-  vertex_count INTEGER NOT NULL, triangle_count INTEGER NOT NULL, tin BLOB NOT NULL,
-  UNIQUE (table_name, zoom_level, tile_column, tile_row));
+  tier INTEGER NOT NULL, source TEXT NOT NULL, tolerance DOUBLE NOT NULL,
+  max_error DOUBLE NOT NULL, vertex_count INTEGER NOT NULL, triangle_count INTEGER NOT NULL,
+  tin BLOB NOT NULL, UNIQUE (table_name, zoom_level, tile_column, tile_row, tier));
 )SQL";
 
 }  // namespace
@@ -39,7 +39,7 @@ Diagnostics StoreWriter::deleteTileTins(const std::string& table, const std::str
 std::optional<std::string> StoreWriter::tileTinSource(const std::string& table, const TileId& id) {
     auto st = mDb.prepare(
         "SELECT source FROM kiosk_tile_tins WHERE table_name = ? AND zoom_level = ? AND "
-        "tile_column = ? AND tile_row = ?");
+        "tile_column = ? AND tile_row = ? LIMIT 1");
     if (!st) return std::nullopt;
     st->bind(1, std::string_view(table));
     st->bindInt(2, id.level);
@@ -49,7 +49,7 @@ std::optional<std::string> StoreWriter::tileTinSource(const std::string& table, 
     return st->columnText(0);
 }
 
-Diagnostics StoreWriter::putTileTin(const std::string& table, const TileId& id,
+Diagnostics StoreWriter::putTileTin(const std::string& table, const TileId& id, int tier,
                                     const std::string& source, double tolerance, double maxError,
                                     std::size_t vertices, std::size_t triangles,
                                     const std::vector<std::uint8_t>& blob) {
@@ -57,8 +57,8 @@ Diagnostics StoreWriter::putTileTin(const std::string& table, const TileId& id,
     if (!mInsertTin.valid()) {
         auto st = mDb.prepare(
             "INSERT OR REPLACE INTO kiosk_tile_tins (table_name, zoom_level, tile_column, "
-            "tile_row, source, tolerance, max_error, vertex_count, triangle_count, tin) VALUES "
-            "(?,?,?,?,?,?,?,?,?,?)");
+            "tile_row, tier, source, tolerance, max_error, vertex_count, triangle_count, tin) "
+            "VALUES (?,?,?,?,?,?,?,?,?,?,?)");
         if (!st) return st.diagnostics;
         mInsertTin = std::move(*st);
     }
@@ -68,14 +68,16 @@ Diagnostics StoreWriter::putTileTin(const std::string& table, const TileId& id,
     st.bindInt(2, id.level);
     st.bindInt(3, id.column);
     st.bindInt(4, id.row);
-    st.bind(5, std::string_view(source));
-    st.bind(6, tolerance);
-    st.bind(7, maxError);
-    st.bind(8, std::int64_t(vertices));
-    st.bind(9, std::int64_t(triangles));
-    st.bindBlob(10, blob.data(), blob.size());
+    st.bindInt(5, tier);
+    st.bind(6, std::string_view(source));
+    st.bind(7, tolerance);
+    st.bind(8, maxError);
+    st.bind(9, std::int64_t(vertices));
+    st.bind(10, std::int64_t(triangles));
+    st.bindBlob(11, blob.data(), blob.size());
     if (st.step() != SQLITE_DONE)
-        d.add(mDb.error("STORE_WRITE", tileName(table, id), "cannot write the tile's TIN"));
+        d.add(mDb.error("STORE_WRITE", tileName(table, id) + " tier " + std::to_string(tier),
+                        "cannot write the tile's TIN"));
     return d;
 }
 

@@ -45,7 +45,8 @@ struct TinMesh {
 /** @brief One row of kiosk_tile_tins, decoded. */
 struct TileTinRow {
     std::string source;      ///< the import's --name (which lines or model built it)
-    double tolerance = 0.0;  ///< TIN tolerance it was built with (metres, tier 0 of its tile)
+    int tier = 0;            ///< tolerance tier (TerrainOptions) it was built for
+    double tolerance = 0.0;  ///< TIN tolerance it was built with (metres)
     TinMesh mesh;
 };
 

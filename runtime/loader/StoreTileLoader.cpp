@@ -108,15 +108,14 @@ bool StoreTileLoader::loadStoredMesh(const LayerBinding& layer, const TileId& id
 bool StoreTileLoader::loadTin(const LayerBinding& layer, const TileId& id, int tier,
                               terrain::TilePayload& p) {
     if (mOptions.fullResolution) return false;  // the reference draws the posts
-    Result<bool> row = mReader->readTileTin(layer.name, id, mTinRow);
+    const std::optional<io::TileStats> stats = mReader->tileStats(layer.name, id);
+    if (!stats) return false;  // absent or broken tile: readElevation says which
+    const double error = double(stats->geometricError);
+    // The coarsest TIN built within the tier's tolerance (none: other TerrainOptions, the grid).
+    Result<bool> row =
+        mReader->readTileTin(layer.name, id, mOptions.tinTolerance(error, tier), mTinRow);
     if (row.ok() && !*row) return false;
     if (row.ok()) {
-        const std::optional<io::TileStats> stats = mReader->tileStats(layer.name, id);
-        if (!stats) return false;  // absent or broken tile: readElevation says which
-        const double error = double(stats->geometricError);
-        // The TIN holds its posts within its build tolerance: it serves every tier at least
-        // that coarse (a finer tier, i.e. other TerrainOptions, meshes the grid).
-        if (mOptions.tinTolerance(error, tier) < mTinRow.tolerance * (1 - 1e-9)) return false;
         const io::TileGrid& grid = mReader->info().grid;
         const double skirt = mOptions.skirtDepth(grid, id.level, error, tier);
         Diagnostics d =

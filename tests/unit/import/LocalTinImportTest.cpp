@@ -56,12 +56,14 @@ fs::path leveeStore(const fs::path& dir) {
     return store;
 }
 
-terrain::TilePayload load(const fs::path& store, const TileId& id) {
+terrain::TilePayload load(const fs::path& store, const TileId& id, int tier = 0,
+                          const terrain::TerrainOptions& options = {}) {
     loader::StoreTileLoader l([store] { return io::StoreReader::open(store); },
-                              {{"elevation", io::LayerKind::Elevation}}, terrain::TerrainOptions{});
+                              {{"elevation", io::LayerKind::Elevation}}, options);
     l.threadStarted();
     loader::LoadRequest req;
     req.key.id = id;
+    req.key.frame = tier;  // an elevation key's frame is its tolerance tier
     terrain::TilePayload p = l.load(req);
     l.threadStopping();
     return p;
@@ -176,6 +178,16 @@ TEST(LocalTinImport, LeveeBreaklineBecomesTheTinOfTheTilesItCrosses) {
     }
     EXPECT_EQ(border, 4 * n) << "every border post is a TIN vertex";
     EXPECT_GE(onCrest, 2);
+    // A coarser tolerance tier draws the same TIN (the only one stored); a finer tolerance
+    // than the TIN's (the full-resolution reference) draws the grid.
+    const terrain::TilePayload far = load(store, id, 3);
+    ASSERT_TRUE(far.mesh) << far.diagnostics.format();
+    EXPECT_EQ(far.mesh->surfaceTriangleCount(), mesh.surfaceTriangleCount());
+    EXPECT_GT(far.mesh->skirtDepth, mesh.skirtDepth);
+    const terrain::TilePayload full =
+        load(store, id, 0, terrain::TerrainOptions::fullResolutionReference());
+    ASSERT_TRUE(full.mesh) << full.diagnostics.format();
+    EXPECT_GT(full.mesh->cellLevels, 0) << "the grid mesh";
     // Away from the line every post is within the tile's tolerance of the TIN, and along the
     // line the TIN is the crest while the grid (the posts) cuts it off.
     const TinSurface surface(mesh);
@@ -261,7 +273,7 @@ TEST(LocalTinImport, DamagedTinDrawsTheGridAndIsNamed) {
                               "zoom_level = " +
                               std::to_string(id.level) +
                               " AND tile_column = " + std::to_string(id.column) +
-                              " AND tile_row = " + std::to_string(id.row))
+                              " AND tile_row = " + std::to_string(id.row) + " AND tier = 0")
                          .hasErrors());
     }
     const terrain::TilePayload p = load(store, id);
@@ -274,11 +286,11 @@ TEST(LocalTinImport, DamagedTinDrawsTheGridAndIsNamed) {
     EXPECT_EQ(w.code, "STORE_TIN_CORRUPT");
     const std::string tile =
         std::to_string(id.level) + "/" + std::to_string(id.column) + "/" + std::to_string(id.row);
-    EXPECT_EQ(w.where, "elevation/" + tile) << w.format();
+    EXPECT_EQ(w.where, "elevation/" + tile + " tier 0") << w.format();
     const Diagnostics deep = io::checkStoreIntegrity(store, io::IntegrityLevel::Deep);
     ASSERT_EQ(deep.size(), 1u) << deep.format();
     EXPECT_EQ(deep.items()[0].code, "STORE_TIN_CORRUPT");
-    EXPECT_EQ(deep.items()[0].where, "elevation/" + tile);
+    EXPECT_EQ(deep.items()[0].where, "elevation/" + tile + " tier 0");
 }
 
 // A GeoPackage line layer without a CRS (GeoJSON always has one: WGS 84 unless it names another).
