@@ -131,5 +131,28 @@ TEST_F(OcclusionCulling, BehindARidgeFewerTilesSamePixels) {
     EXPECT_EQ(seen.info.tilesOccluded, 0u);
 }
 
+// The full-resolution reference (ReferenceFidelity's yardstick) culls too, with the same pixels:
+// every post drawn, so a culled tile there would be a hole in the reference itself.
+TEST_F(OcclusionCulling, FullResolutionReferenceCullsWithSamePixels) {
+    ASSERT_EQ(sProblem, "");
+    constexpr int W = 480, H = 270;
+    auto rt = makeTarget(W, H);
+    auto opened = Session::open(sDir / "scene.json", mCaps, [](config::Scenario& sc) {
+        sc.terrain.reference = config::TerrainReference::Full;
+    });
+    ASSERT_TRUE(opened.ok()) << opened.diagnostics.format();
+    Session& s = **opened;
+    const double ridgeY = kNorth - (kRidgeRow + 0.5) * kPost;
+    const math::Viewpoint vp{glm::dvec3(kWest + 300 * kPost, ridgeY, 1500.0), 20.0, -5.0, 4800.0};
+    const math::Camera cam = makeCamera(vp, s.terrain().bounds(), W, H, 45.0);
+    const Frame on = draw(s, rt, cam);
+    s.terrain().setOcclusionCulling(false);
+    const Frame off = draw(s, rt, cam);
+    EXPECT_GE(on.info.tilesOccluded, 1u) << off.info.tilesDrawn << " tiles drawn without culling";
+    EXPECT_EQ(on.info.tilesDrawn + on.info.tilesOccluded, off.info.tilesDrawn);
+    EXPECT_EQ(differingPixels(on.image, off.image, 2), 0);
+    EXPECT_EQ(test::crackPixels(on.image).cracks, 0);
+}
+
 }  // namespace
 }  // namespace kiosk::app
