@@ -99,16 +99,20 @@ TEST(ScenarioSchema, EnumValuesAreAcceptedByTheReader) {
     const json schema = loadSchema();
     ASSERT_TRUE(schema.is_object());
     const json& layerKinds = schema["$defs"]["Layer"]["properties"]["kind"]["enum"];
-    ASSERT_EQ(layerKinds.size(), 7u);
+    ASSERT_EQ(layerKinds.size(), 11u);
     for (const auto& kind : layerKinds) {
         const std::string k = kind.get<std::string>();
-        const std::string source = k == "sequence" ? R"({"store": "v", "sequence": "s"})"
-                                                   : R"({"store": "v", "layer": "x"})";
+        const bool derived = k == "maximum" || k == "arrival" || k == "duration" || k == "hazard";
+        const std::string source =
+            k == "sequence" || derived ? R"({"store": "v", "sequence": "s"})"
+                                       : R"({"store": "v", "layer": "x"})";
+        const std::string product =
+            k == "arrival" || k == "duration" ? R"(, "product": {"threshold": 1})" : "";
         const std::string text =
             R"({"version": 1, "stores": {"v": "v.gpkg"}, "terrain": {"store": "v"},
                 "transferFunctions": {"t": {"preset": "viridis"}},
                 "layers": [{"id": "a", "kind": ")" +
-            k + R"(", "source": )" + source + R"(, "transfer": "t"}]})";
+            k + R"(", "source": )" + source + product + R"(, "transfer": "t"}]})";
         auto r = parseScenario(text, "e.json");
         EXPECT_TRUE(r.ok()) << k << r.diagnostics.format();
     }
