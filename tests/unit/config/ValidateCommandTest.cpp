@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <sstream>
 
 namespace kiosk::io {
@@ -31,8 +32,35 @@ private:
 };
 }  // namespace
 
-// A store "exists" when its file name is valley.gpkg; it has elevation and imagery layers.
+// flood.gpkg: a depth sequence and what the product kinds' mistakes need beside it.
+std::unique_ptr<StoreReader> floodStore(const std::filesystem::path& path) {
+    StoreInfo info;
+    info.path = path.string();
+    LayerInfo elevation;
+    elevation.name = "elevation";
+    elevation.units = "m";
+    info.layers = {elevation};
+    auto sequence = [](const char* name, const char* units, int frames) {
+        SequenceInfo s;
+        s.name = name;
+        s.units = units;
+        for (int k = 0; k < frames; ++k) {
+            s.frameTimes.push_back(1.7e9 + 60.0 * k);
+            s.frameMin.push_back(0);
+            s.frameMax.push_back(3);
+        }
+        return s;
+    };
+    info.sequences = {sequence("flood", "m", 4), sequence("speed", "m/s", 4),
+                      sequence("speed_kmh", "km/h", 4), sequence("speed_short", "m/s", 3),
+                      sequence("stage_cm", "cm", 4)};
+    return std::unique_ptr<StoreReader>(new FakeStore(std::move(info)));
+}
+
+// A store "exists" when its file name is valley.gpkg (elevation and imagery layers) or
+// flood.gpkg (above).
 Result<std::unique_ptr<StoreReader>> StoreReader::open(const std::filesystem::path& path) {
+    if (path.filename() == "flood.gpkg") return floodStore(path);
     if (path.filename() != "valley.gpkg") {
         Diagnostics d;
         d.error("STORE_OPEN", path.string(), "", "cannot open store (no such file)");
@@ -119,6 +147,106 @@ TEST(ValidateCommand, AnyInvalidScenarioExitsOneAndAllAreChecked) {
               std::string::npos)
         << r.err;
     EXPECT_NE(r.err.find("scenarios/broken/empty.json:1:1:"), std::string::npos) << r.err;
+}
+
+// The product kinds' mistakes (docs/products.md): each is exactly one line on stderr naming its
+// JSON pointer and code, and validate exits 1; a hazard layer without velocity (the stated
+// depth-only fallback) is valid.
+TEST(ValidateCommand, EachProductMistakeIsOneLineWithItsPointer) {
+    test::TempDir dir("validate-products");
+    auto scenario = [&](const std::string& name, const std::string& layer) {
+        return dir
+            .write(name, R"({
+  "version": 1,
+  "stores": { "s": "flood.gpkg" },
+  "terrain": { "store": "s" },
+  "transferFunctions": {
+    "depth": { "units": "m", "stops": [ { "value": 0, "color": "#000000" }, { "value": 3, "color": "#ffffff" } ] },
+    "hours": { "units": "h", "stops": [ { "value": 0, "color": "#000000" }, { "value": 2, "color": "#ffffff" } ] },
+    "classes": { "classes": [ { "from": 1, "color": "#ffff00", "label": "H1" }, { "from": 6, "color": "#ff0000", "label": "H6" } ] }
+  },
+  "layers": [
+    )" + layer + R"(
+  ]
+})")
+            .string();
+    };
+    struct Case {
+        const char* layer;
+        const char* code;
+        const char* where;    ///< file:line:col: pointer
+        const char* message;  ///< a substring of the line
+    };
+    const Case cases[] = {
+        // A product of something that is not a sequence.
+        {R"({ "id": "m", "kind": "maximum", "source": { "store": "s", "layer": "elevation" }, "transfer": "depth" })",
+         "SCENARIO_MISSING", ":12:40: /layers/0/source:", "a maximum layer needs \"sequence\""},
+        // "product" on a kind that is not a product.
+        {R"({ "id": "q", "kind": "sequence", "source": { "store": "s", "sequence": "flood" }, "transfer": "depth", "product": { "threshold": 1 } })",
+         "SCENARIO_CONFLICT", ":12:110: /layers/0/product:", "not to a sequence layer"},
+        // An option of another product kind.
+        {R"({ "id": "m", "kind": "maximum", "source": { "store": "s", "sequence": "flood" }, "transfer": "depth", "product": { "threshold": 1 } })",
+         "SCENARIO_CONFLICT", ":12:124: /layers/0/product/threshold:",
+         "\"threshold\" applies to arrival and duration layers only"},
+        {R"({ "id": "a", "kind": "arrival", "source": { "store": "s", "sequence": "flood" }, "transfer": "hours", "product": { "threshold": 1, "velocity": "speed" } })",
+         "SCENARIO_CONFLICT",
+         ":12:154: /layers/0/product/velocity:", "\"velocity\" applies to hazard layers only"},
+        {R"({ "id": "d", "kind": "duration", "source": { "store": "s", "sequence": "flood" }, "transfer": "hours", "product": { "threshold": 1, "isochrones": 1 } })",
+         "SCENARIO_CONFLICT",
+         ":12:157: /layers/0/product/isochrones:", "\"isochrones\" applies to arrival layers only"},
+        // Arrival and duration need a threshold.
+        {R"({ "id": "d", "kind": "duration", "source": { "store": "s", "sequence": "flood" }, "transfer": "hours" })",
+         "SCENARIO_MISSING", ":12:5: /layers/0:", "a duration layer needs \"product\""},
+        {R"({ "id": "a", "kind": "arrival", "source": { "store": "s", "sequence": "flood" }, "transfer": "hours", "product": { "units": "m" } })",
+         "SCENARIO_MISSING", ":12:109: /layers/0/product:", "\"threshold\""},
+        // The threshold in other units than the sequence's.
+        {R"({ "id": "a", "kind": "arrival", "source": { "store": "s", "sequence": "flood" }, "transfer": "hours", "product": { "threshold": 10, "units": "cm" } })",
+         "SCENARIO_UNITS", ":12:138: /layers/0/product/units:",
+         "threshold stated in \"cm\" but sequence \"flood\" is in \"m\""},
+        // Hazard: velocity absent, with other frames, not in m/s; depth not in metres.
+        {R"({ "id": "h", "kind": "hazard", "source": { "store": "s", "sequence": "flood" }, "transfer": "classes", "product": { "velocity": "sped" } })",
+         "SCENARIO_UNKNOWN_SEQUENCE",
+         ":12:135: /layers/0/product/velocity:", "store \"s\" has no sequence \"sped\""},
+        {R"({ "id": "h", "kind": "hazard", "source": { "store": "s", "sequence": "flood" }, "transfer": "classes", "product": { "velocity": "speed_short" } })",
+         "SCENARIO_TIME_RANGE", ":12:135: /layers/0/product/velocity:",
+         "velocity sequence \"speed_short\" does not have the frames of \"flood\" (3 and 4 "
+         "frames)"},
+        {R"({ "id": "h", "kind": "hazard", "source": { "store": "s", "sequence": "flood" }, "transfer": "classes", "product": { "velocity": "speed_kmh" } })",
+         "SCENARIO_UNITS", ":12:135: /layers/0/product/velocity:",
+         "velocity sequence \"speed_kmh\" is in \"km/h\"; the hazard curves need m/s"},
+        {R"({ "id": "h", "kind": "hazard", "source": { "store": "s", "sequence": "stage_cm" }, "transfer": "classes", "product": { "velocity": "speed" } })",
+         "SCENARIO_UNITS", ":12:70: /layers/0/source/sequence:",
+         "hazard classes need depth in metres; sequence \"stage_cm\" is in \"cm\""},
+    };
+    int n = 0;
+    for (const Case& c : cases) {
+        const std::string file = scenario("p" + std::to_string(n++) + ".json", c.layer);
+        const Outcome r = run({file});
+        EXPECT_EQ(r.status, 1) << c.layer << "\n" << r.err;
+        EXPECT_EQ(r.out, "") << c.layer;
+        // Exactly one line, and it is the mistake: file:line:col: pointer: message [CODE].
+        ASSERT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.layer << "\n" << r.err;
+        EXPECT_EQ(r.err.rfind(file + c.where, 0), 0u) << r.err;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(std::string("[") + c.code + "]\n"), std::string::npos) << r.err;
+    }
+    // Depth only: no velocity is the stated fallback, not a mistake.
+    const Outcome fallback = run(
+        {"--quiet",
+         scenario(
+             "fallback.json",
+             R"({ "id": "h", "kind": "hazard", "source": { "store": "s", "sequence": "flood" }, "transfer": "classes" })")});
+    EXPECT_EQ(fallback.status, 0) << fallback.err;
+    EXPECT_EQ(fallback.err, "");
+    // Every option where it belongs: valid.
+    const Outcome good = run(
+        {"--quiet",
+         scenario(
+             "good.json",
+             R"({ "id": "a", "kind": "arrival", "source": { "store": "s", "sequence": "flood" }, "transfer": "hours", "product": { "threshold": 0.5, "units": "m", "timeUnits": "h", "isochrones": 1 } },
+    { "id": "h", "kind": "hazard", "source": { "store": "s", "sequence": "flood" }, "transfer": "classes", "product": { "velocity": "speed" } })")});
+    EXPECT_EQ(good.status, 0) << good.err;
+    EXPECT_EQ(good.err, "");
 }
 
 TEST(ValidateCommand, UsageErrorsExitTwo) {
