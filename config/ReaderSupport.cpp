@@ -17,7 +17,7 @@ const std::map<std::string, std::vector<std::string>>& propertyTable() {
          {"store", "elevation", "tauGeom", "tauTex", "verticalExaggeration", "reference",
           "cacheBytes", "gpuBytes", "proceduralDetail"}},
         {"Layer",
-         {"id", "kind", "source", "transfer", "operation", "enabled", "interpolate", "nodataAs"}},
+         {"id", "kind", "source", "transfer", "operation", "enabled", "interpolate", "nodataAs", "of"}},
         {"Source", {"store", "layer", "sequence"}},
         {"Operation", {"type", "weight", "opacity", "visibility"}},
         {"TransferFunction",

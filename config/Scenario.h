@@ -61,7 +61,16 @@ struct Terrain {
 };
 
 /// Normals: a normal-map layer lit by the scenario's (moving) sun, hybrid with mesh shading.
-enum class LayerKind { Thematic, Luminance, Topographic, Visibility, Data, Sequence, Normals };
+enum class LayerKind {
+    Thematic,
+    Luminance,
+    Topographic,
+    Visibility,
+    Data,
+    Sequence,
+    Normals,
+    Difference,  ///< A - B of two scalar layers of the stack (layers/difference/)
+};
 /** @brief How a layer combines with the result of the layers below it (Döllner's operations). */
 enum class OperationType {
     Opacity,   ///< alpha-over with a constant opacity (the default)
@@ -93,7 +102,9 @@ struct Layer {
     bool enabled = true;
     SequenceInterpolation interpolate = SequenceInterpolation::Data;  ///< sequence only
     std::optional<double> nodataAs;  ///< sequence: nodata counts as this value when blending
-    std::string pointer;             ///< e.g. "/layers/2"
+    /** @brief difference: the ids of the layers A and B (value = A - B), JSON "of". */
+    std::vector<std::string> operands;
+    std::string pointer;  ///< e.g. "/layers/2"
 };
 
 /** @brief A named transfer function and where it came from. */
@@ -120,8 +131,10 @@ struct Clock {
     std::string pointer = "/clock";
 };
 
-enum class LensKind { Highlight, Visibility };
-enum class LensShape { Circle, Ellipse };
+/** @brief Comparison: another layer stack (run B, forecast, a difference) inside the lens. */
+enum class LensKind { Highlight, Visibility, Comparison };
+/** @brief Swipe: a straight line through `center`; the inside is the side `rotation` points to. */
+enum class LensShape { Circle, Ellipse, Swipe };
 
 /** @brief Lens parameters at a time; absent fields keep the lens's base value. */
 struct LensKey {
@@ -144,6 +157,8 @@ struct Lens {
     double lower = 0.25;  ///< highlight: luminance removed outside
     std::string inside;   ///< visibility: layer shown inside
     std::string outside;  ///< visibility: layer shown outside
+    /** @brief comparison: the layers drawn only inside (B's stack) and only outside (A's). */
+    std::vector<std::string> insideStack, outsideStack;
     bool enabled = true;
     std::vector<LensKey> keys;  ///< sorted by time as written
     std::string pointer;

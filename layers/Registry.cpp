@@ -1,6 +1,7 @@
 #include "layers/Registry.h"
 
 #include "layers/data/Data.h"
+#include "layers/difference/Difference.h"
 #include "layers/luminance/Luminance.h"
 #include "layers/normals/Normals.h"
 #include "layers/sequence/Sequence.h"
@@ -31,6 +32,7 @@ Registry& registry() {
         k.add("visibility", std::make_unique<VisibilityKind>());
         k.add("data", std::make_unique<DataKind>());
         k.add("sequence", std::make_unique<SequenceKind>());
+        k.add("difference", std::make_unique<DifferenceKind>());
         return k;
     }();
     return r;

@@ -58,8 +58,14 @@ public:
     void threadStarted() override;
     terrain::TilePayload load(const LoadRequest& request) override;
     void threadStopping() override;
-    /** @brief Test hook: every load() first sleeps this long (a slow disk or network share). */
-    void setArtificialDelay(double seconds) noexcept { mDelaySeconds = seconds; }
+    /**
+     * @brief Test hook: every load() first sleeps this long (a slow disk or network share); with
+     * `store` >= 0 only the loads from that store (index into the openers) do.
+     */
+    void setArtificialDelay(double seconds, int store = -1) noexcept {
+        mDelaySeconds = seconds;
+        mDelayStore = store;
+    }
 
 private:
     void loadArrivalThresholds(const LayerBinding& layer, int frame, terrain::TilePayload& p);
@@ -81,6 +87,7 @@ private:
     terrain::StoredMeshBuilder mStoredMeshes;
     io::TileMeshRow mMeshRow;  // decoded stored mesh, buffers reused from tile to tile
     double mDelaySeconds = 0.0;
+    int mDelayStore = -1;  ///< -1: every store is slow
 };
 
 }  // namespace kiosk::loader

@@ -99,16 +99,24 @@ TEST(ScenarioSchema, EnumValuesAreAcceptedByTheReader) {
     const json schema = loadSchema();
     ASSERT_TRUE(schema.is_object());
     const json& layerKinds = schema["$defs"]["Layer"]["properties"]["kind"]["enum"];
-    ASSERT_EQ(layerKinds.size(), 7u);
+    ASSERT_EQ(layerKinds.size(), 8u);
     for (const auto& kind : layerKinds) {
         const std::string k = kind.get<std::string>();
         const std::string source = k == "sequence" ? R"({"store": "v", "sequence": "s"})"
                                                    : R"({"store": "v", "layer": "x"})";
+        // A difference has no source: it subtracts two scalar layers of the stack.
+        const std::string layer =
+            k == "difference"
+                ? R"({"id": "p", "kind": "data", "source": {"store": "v", "layer": "x"},
+                      "transfer": "t"}, {"id": "a", "kind": "difference", "of": ["p", "p"],
+                      "transfer": "t"})"
+                : R"({"id": "a", "kind": ")" + k + R"(", "source": )" + source +
+                      R"(, "transfer": "t"})";
         const std::string text =
             R"({"version": 1, "stores": {"v": "v.gpkg"}, "terrain": {"store": "v"},
                 "transferFunctions": {"t": {"preset": "viridis"}},
-                "layers": [{"id": "a", "kind": ")" +
-            k + R"(", "source": )" + source + R"(, "transfer": "t"}]})";
+                "layers": [)" +
+            layer + "]}";
         auto r = parseScenario(text, "e.json");
         EXPECT_TRUE(r.ok()) << k << r.diagnostics.format();
     }
