@@ -38,5 +38,6 @@ fi
 /usr/bin/python3 "$ROOT/bench/kiosk/kiosk_bench.py" scrape "$BUILD/geokiosk" "$ROOT"
 "$BUILD/bench/bench-wall" scenarios/demo/rainier.json   # swap barrier, 4/16 follower processes vs one node's frame
 "$BUILD/bench/bench-export" scenarios/demo/rainier.json --frames ${KIOSK_BENCH_FRAMES:-60}  # 1080p export vs PNG vs rendering alone
+"$BUILD/bench/bench-yuv420"   # the export's RGBA -> YUV 4:2:0 against libswscale (its previous path)
 # Out-of-core at W04 scale (issue 20): SYNTHETIC 16k^2 vs 4k^2 DEM, import, first complete frame, flight.
 /usr/bin/python3 "$ROOT/bench/outofcore/outofcore_bench.py" "$BUILD"

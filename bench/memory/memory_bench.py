@@ -23,49 +23,26 @@ usage: memory_bench.py BUILD/geokiosk [--baseline OLD/geokiosk] [--frames N]
 import json
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
-import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import procstat  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 DEMO = os.path.join(ROOT, "scenarios/demo/rainier.json")
-ENV = dict(os.environ,
-           __EGL_VENDOR_LIBRARY_FILENAMES="/usr/share/glvnd/egl_vendor.d/50_mesa.json",
-           GALLIUM_DRIVER="llvmpipe")
-
-
-def pss_kb(pid):
-    try:
-        with open(f"/proc/{pid}/smaps_rollup") as f:
-            for line in f:
-                if line.startswith("Pss:"):
-                    return int(line.split()[1])
-    except OSError:
-        pass
-    return 0
+ENV = procstat.MESA_ENV
 
 
 def measure(cmd):
     """Run cmd; return peak RSS/PSS (MB), wall seconds, exit status."""
-    start = time.monotonic()
-    p = subprocess.Popen(cmd, env=ENV, cwd=ROOT, stdout=subprocess.DEVNULL,
-                         stderr=subprocess.PIPE)
-    peak_pss = 0
-    while True:
-        pid, status, usage = os.wait4(p.pid, os.WNOHANG)
-        if pid:
-            break
-        peak_pss = max(peak_pss, pss_kb(p.pid))
-        time.sleep(0.02)
-    wall = time.monotonic() - start
-    err = p.stderr.read().decode(errors="replace")
-    p.stderr.close()
-    return {"peak_rss_mb": round(usage.ru_maxrss / 1024.0, 1),
-            "peak_pss_mb": round(peak_pss / 1024.0, 1),
-            "wall_s": round(wall, 3),
-            "exit": os.waitstatus_to_exitcode(status),
-            "stderr_tail": err.strip().splitlines()[-1:] if err.strip() else []}
+    r = procstat.run(cmd, cwd=ROOT, env=ENV, sample=procstat.pss_kb)
+    err = r["stderr"].strip()
+    return {"peak_rss_mb": r["peak_rss_mb"],
+            "peak_pss_mb": round((r["sampled_max"] or 0) / 1024.0, 1),
+            "wall_s": round(r["wall_s"], 3),
+            "exit": r["exit"],
+            "stderr_tail": err.splitlines()[-1:] if err else []}
 
 
 def workloads(binary, frames, tmp):

@@ -18,29 +18,23 @@ import argparse
 import json
 import os
 import statistics
-import subprocess
 import sys
-import time
 from pathlib import Path
 
-ENV = dict(os.environ, __EGL_VENDOR_LIBRARY_FILENAMES="/usr/share/glvnd/egl_vendor.d/50_mesa.json",
-           GALLIUM_DRIVER="llvmpipe")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+import procstat  # noqa: E402
+
+ENV = procstat.MESA_ENV
 POST = 10.0
 WEST, NORTH = 500000.0, 5300000.0
 
 
 def run(argv, cwd=None):
     """Run one process; wall seconds and its own peak RSS (MB) from wait4."""
-    t0 = time.monotonic()
-    p = subprocess.Popen(argv, cwd=cwd, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    _, status, ru = os.wait4(p.pid, 0)
-    wall = time.monotonic() - t0
-    err = p.stderr.read().decode(errors="replace")
-    p.stderr.close()
-    code = os.waitstatus_to_exitcode(status)
-    if code != 0:
-        sys.exit(f"outofcore_bench: {' '.join(map(str, argv))} exited {code}:\n{err[-2000:]}")
-    return {"seconds": round(wall, 3), "peak_rss_mb": round(ru.ru_maxrss / 1024.0, 1)}
+    r = procstat.run(argv, cwd=cwd, env=ENV)
+    if r["exit"] != 0:
+        sys.exit(f"outofcore_bench: {' '.join(map(str, argv))} exited {r['exit']}:\n{r['stderr'][-2000:]}")
+    return {"seconds": round(r["wall_s"], 3), "peak_rss_mb": r["peak_rss_mb"]}
 
 
 def scenario(store, n, pitch):

@@ -1,10 +1,12 @@
 #include "runtime/export/AvStream.h"
 
+#include "runtime/export/Yuv420.h"
+
 extern "C" {
 #include <libavcodec/avcodec.h>
 #include <libavformat/avformat.h>
 #include <libavutil/opt.h>
-#include <libswscale/swscale.h>
+#include <libavutil/pixfmt.h>
 }
 
 #include <cstring>
@@ -93,7 +95,7 @@ bool AvStream::open(const VideoOptions& options, Diagnostics& diags) {
     mCodec->framerate = rate;
     mCodec->thread_count = 0;  // the codec's own choice (x264 frame threads, FFV1 slices)
     if (yuv) {
-        // Tagged as what the conversion below produces, so players undo exactly that matrix
+        // Tagged as what rgbaToYuv420Bt709 (Yuv420.h) produces, so players undo exactly that matrix
         // and range and show the PNG's colours (untagged HD video is guessed, often as BT.601).
         mCodec->color_primaries = AVCOL_PRI_BT709;
         mCodec->color_trc = AVCOL_TRC_BT709;
@@ -181,18 +183,6 @@ bool AvStream::open(const VideoOptions& options, Diagnostics& diags) {
         error(diags, "EXPORT_OPEN", "cannot allocate a frame", err);
         return false;
     }
-    if (yuv) {
-        mSws = sws_getContext(options.width, options.height, AV_PIX_FMT_RGBA, options.width,
-                              options.height, AV_PIX_FMT_YUV420P,
-                              SWS_BICUBIC | SWS_ACCURATE_RND | SWS_FULL_CHR_H_INT, nullptr, nullptr,
-                              nullptr);
-        // swscale defaults to BT.601 coefficients; BT.709 limited range is what the stream says.
-        const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
-        if (!mSws || sws_setColorspaceDetails(mSws, bt709, 1, bt709, 0, 0, 1 << 16, 1 << 16) < 0) {
-            error(diags, "EXPORT_OPEN", "cannot set up the BT.709 RGB to YUV conversion", 0);
-            return false;
-        }
-    }
     return true;
 }
 
@@ -203,11 +193,10 @@ bool AvStream::encode(const std::uint8_t* rgba, Diagnostics& diags) {
         return false;
     }
     const int w = mOptions.width, h = mOptions.height;
-    if (mSws) {
-        // Bottom row first (glReadPixels' order): start at the top row and step upwards.
-        const std::uint8_t* src[1] = {rgba + std::size_t(h - 1) * std::size_t(w) * 4};
-        const int stride[1] = {-w * 4};
-        sws_scale(mSws, src, stride, 0, h, mFrame->data, mFrame->linesize);
+    if (mFrame->format == AV_PIX_FMT_YUV420P) {
+        rgbaToYuv420Bt709(rgba, w, h,
+                          {mFrame->data[0], mFrame->data[1], mFrame->data[2], mFrame->linesize[0],
+                           mFrame->linesize[1], mFrame->linesize[2]});
     } else {
         // RGBA bytes -> 0x00RRGGBB words: a plain repack of the samples (nothing to round).
         for (int y = 0; y < h; ++y) {
@@ -293,8 +282,6 @@ void AvStream::release() {
     avcodec_free_context(&mCodec);
     av_frame_free(&mFrame);
     av_packet_free(&mPacket);
-    sws_freeContext(mSws);
-    mSws = nullptr;
 }
 
 }  // namespace kiosk::video

@@ -12,15 +12,15 @@ struct AVCodecContext;
 struct AVStream;
 struct AVFrame;
 struct AVPacket;
-struct SwsContext;
 
 namespace kiosk::video {
 
 /**
  * @brief One video stream in one file through libavformat/libavcodec: the single place that
- * knows codec names, pixel formats, colour tags and the RGB -> YUV matrix. Not thread-safe; the
- * encoder thread owns it. Writes to `path.part` and renames on close(), so a half-written
- * video never carries the final name. Built only into the module geokiosk-av.so (StreamModule.h).
+ * knows codec names, pixel formats and colour tags (the RGB -> YUV matrix is Yuv420.h). Not
+ * thread-safe; the encoder thread owns it. Writes to `path.part` and renames on close(), so a
+ * half-written video never carries the final name. Built only into the module geokiosk-av.so
+ * (StreamModule.h).
  */
 class AvStream final : public EncoderStream {
 public:
@@ -46,7 +46,6 @@ private:
     AVStream* mStream = nullptr;
     AVFrame* mFrame = nullptr;
     AVPacket* mPacket = nullptr;
-    SwsContext* mSws = nullptr;  ///< RGBA -> YUV 4:2:0 (BT.709, limited); null for FFV1's RGB
     std::int64_t mNextPts = 0;
     bool mHeaderWritten = false;
 };

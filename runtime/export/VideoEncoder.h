@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-// Video export through FFmpeg's libraries (libavcodec, libavformat, libswscale). No GL here: the
+// Video export through FFmpeg's libraries (libavcodec, libavformat, libavutil). No GL here: the
 // frame loop hands finished RGBA readbacks (the very bytes the PNG path writes) to the encoder.
 namespace kiosk::video {
 
