@@ -259,6 +259,14 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
         s << "    C *= mix(mix(1.0, uLensParam" << j << ".z, uLensParam" << j << ".w), uLensParam"
           << j << ".y, lens" << j << ");\n";
     }
+    for (std::size_t j = 0; j < desc.lenses.size(); ++j) {
+        if (desc.lenses[j].kind != LensKind::Comparison) continue;
+        // Where the two stacks meet: a thin light line about 1.5 pixels wide along the mask's
+        // half-way level (screen-space derivative), so a viewer sees where the lens is.
+        s << "    C = mix(C, vec3(0.96), 0.85 * uLensParam" << j
+          << ".w * (1.0 - smoothstep(0.0, 1.5 * fwidth(lens" << j << ") + 1e-4, abs(lens" << j
+          << " - 0.5 * uLensParam" << j << ".w))));\n";
+    }
     if (desc.outputPosition && desc.proceduralDetail)  // the displaced surface
         s << "    fragColor = vec4(vScenePos, vElevation + vDetailOffset, 2.0);\n}\n";
     else if (desc.outputPosition)

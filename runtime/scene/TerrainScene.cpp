@@ -458,6 +458,7 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
         const GpuSlot& g = mGpu[t.handle.index()];
         const terrain::TilePayload* p = mCache->get(t.handle);
         if (!g.mesh.valid() || !p || !p->mesh) continue;
+        groupTileValidity(t);
         for (std::size_t li = 0; li < mLayers.size(); ++li) {
             const StackLayer& l = mLayers[li];
             render::LayerBinding b;
@@ -473,6 +474,9 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
                     b.alpha = float(l.shown.alpha);
                 }
                 if (l.specT >= 0) bindArrival(l, t, b);
+                // A sync group draws on a tile only where every member has its frames there
+                // (alone, a layer shows what has arrived meanwhile): no side shows alone.
+                if (l.syncGroup >= 0 && !groupDrawsTile(l)) b.valid = false;
             }
             b.strength = l.strengthOverride.value_or(l.strength);
             r.setLayer(int(li), b);

@@ -293,6 +293,12 @@ private:
     void buildSyncGroups(const render::CompositeProgramDesc& desc);
     /** @brief Per group: every member's wanted pair is complete for the view this frame. */
     void syncGroupsComplete(const std::vector<anim::FrameBracket>& wanted);
+    /** @brief Per group, for drawing tile `t`: every member has its frame textures there. */
+    void groupTileValidity(const terrain::DrawTile& t);
+    /** @brief Member `l` may draw on the current tile: its group shows a pair and has it here. */
+    bool groupDrawsTile(const StackLayer& l) const {
+        return l.shown.hasPair && mGroupTileValid[std::size_t(l.syncGroup)] != 0;
+    }
     /** @brief GEOKIOSK_TEST_LOAD_DELAY_STORE: the store (loader index) slowed by the test hook. */
     int testDelayedStore() const;
     /** @brief Data layers and LUTs of the projective mappings (TerrainSceneMappings.cpp). */
@@ -388,6 +394,7 @@ private:
     int mRoutePointLayer = -1;
     std::unique_ptr<DetailState, DetailDeleter> mDetail;
     std::vector<std::uint8_t> mGroupComplete;            ///< per sync group, this frame
+    std::vector<std::uint8_t> mGroupTileValid;           ///< per sync group, the tile drawn
     std::vector<std::optional<LensPlacement>> mLensPut;  ///< per lens: placed at run time
     std::vector<LensPlacement> mLensDrawn;               ///< per lens: last frame's placement
 };

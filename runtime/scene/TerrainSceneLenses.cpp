@@ -124,10 +124,27 @@ void TerrainScene::buildSyncGroups(const render::CompositeProgramDesc& desc) {
         mLayers[i].syncGroup = group[r];
     }
     mGroupComplete.assign(std::size_t(groups), 1);
+    mGroupTileValid.assign(std::size_t(groups), 1);
+}
+
+void TerrainScene::groupTileValidity(const terrain::DrawTile& t) {
+    std::fill(mGroupTileValid.begin(), mGroupTileValid.end(), std::uint8_t(1));
+    for (const StackLayer& l : mLayers) {
+        if (l.syncGroup < 0) continue;
+        for (int spec : {l.specA, l.specB}) {
+            if (spec < 0) continue;
+            if (int(t.textureCount) <= spec ||
+                !mSelection->textures[t.firstTexture + std::uint32_t(spec)].handle.valid())
+                mGroupTileValid[std::size_t(l.syncGroup)] = 0;
+        }
+    }
 }
 
 void TerrainScene::syncGroupsComplete(const std::vector<anim::FrameBracket>& wanted) {
-    std::fill(mGroupComplete.begin(), mGroupComplete.end(), std::uint8_t(1));
+    // No tile selected yet (no geometry resident) is not "complete": a first pair committed on
+    // an empty view would let each member draw whatever arrives first.
+    const std::uint8_t any = mSelection && !mSelection->tiles.empty() ? 1 : 0;
+    std::fill(mGroupComplete.begin(), mGroupComplete.end(), any);
     for (std::size_t i = 0; i < mLayers.size(); ++i) {
         const StackLayer& l = mLayers[i];
         if (l.syncGroup < 0) continue;
