@@ -42,3 +42,35 @@ fi
 "$BUILD/bench/bench-yuv420"   # the export's RGBA -> YUV 4:2:0 against libswscale (its previous path)
 # Out-of-core at W04 scale (issue 20): SYNTHETIC 16k^2 vs 4k^2 DEM, import, first complete frame, flight.
 /usr/bin/python3 "$ROOT/bench/outofcore/outofcore_bench.py" "$BUILD"
+# Occlusion culling on vs off (issue 20), same session, alternating passes: three oblique views
+# at Mount Rainier (demo; its 20 km tiles leave little to cull) and three low views into a
+# SYNTHETIC 4096^2 DEM at 10 m (2.5 km tiles; make-synthetic-dem, imported once into bench-data).
+"$BUILD/bench/bench-occlusion" scenarios/demo/rainier.json --view 594500,5189560,1800,120,-2,15000 \
+    --view 594500,5189560,3500,180,-3,9000 --view 594500,5189560,2500,300,-4,20000
+data=$BUILD/bench-data
+mkdir -p "$data"
+if [[ ! -f "$data/synthetic4k.gpkg" ]]; then
+    "$BUILD/make-synthetic-dem" 4096 "$data/synthetic4k.tif" >&2
+    "$BUILD/geokiosk" import elevation "$data/synthetic4k.tif" --store "$data/synthetic4k.gpkg" --quiet
+fi
+cat >"$data/synthetic4k.json" <<'JSON'
+{ "version": 1, "title": "SYNTHETIC 4096^2 DEM (occlusion benchmark)",
+  "stores": { "dem": "synthetic4k.gpkg" }, "terrain": { "store": "dem", "tauGeom": 2, "tauTex": 1 },
+  "transferFunctions": { "relief": { "label": "Elevation", "units": "m", "stops": [
+      { "value": -500, "color": "#3f7f4f" }, { "value": 1500, "color": "#c9b98a" },
+      { "value": 3000, "color": "#9c8a78" }, { "value": 4600, "color": "#ffffff" } ] } },
+  "layers": [ { "id": "relief", "kind": "data", "source": { "store": "dem", "layer": "elevation" },
+                "transfer": "relief" } ] }
+JSON
+"$BUILD/bench/bench-occlusion" "$data/synthetic4k.json"
+# Impostors (issue 20): far terrain drawn vs not drawn (far plane cut) vs a one-fetch quad over
+# its pixels, alternating passes: the upper bound of any impostor win on llvmpipe.
+"$BUILD/bench/bench-impostor" scenarios/demo/rainier.json --view 594500,5189560,1800,120,-8,40000
+"$BUILD/bench/bench-impostor" "$data/synthetic4k.json" --view 520480,5279520,2289,0,-6,12000
+# GPU texture compression (issue 20): ASTC 4x4 (astcenc) PSNR per imagery layer, encode cost,
+# and what llvmpipe holds per compressed texture vs RGBA8 (built when libastcenc-dev is there).
+if [[ -x "$BUILD/bench/bench-texcompress" ]]; then
+    "$BUILD/bench/bench-texcompress" data/generated/rainier.gpkg
+else
+    echo '{"benchmark":"texture_compression","skipped":"libastcenc-dev not installed"}'
+fi

@@ -57,6 +57,8 @@ struct Terrain {
     std::int64_t gpuBytes = 0;
     /** @brief Procedural detail near the camera (decoration, labelled; docs/terrain.md §7). */
     bool proceduralDetail = false;
+    /** @brief Skip tiles hidden behind nearer terrain (docs/terrain.md §10); false: draw all. */
+    bool occlusionCulling = true;
     std::string pointer = "/terrain";
 };
 

@@ -81,6 +81,7 @@ void Reader::terrain(const json& j) {
         assign(t.cacheBytes, readBytes(mC, *b, o.at("cacheBytes")));
     if (const json* b = o.get("gpuBytes")) assign(t.gpuBytes, readBytes(mC, *b, o.at("gpuBytes")));
     assign(t.proceduralDetail, o.boolean("proceduralDetail"));
+    assign(t.occlusionCulling, o.boolean("occlusionCulling"));
 }
 
 }  // namespace reader

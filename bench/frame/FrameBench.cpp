@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "bench/common/PhaseTimes.h"
+#include "bench/common/BenchArgs.h"
 #include "bench/common/HeadlessGl.h"
 #include "runtime/anim/FrameGovernor.h"
 #include "runtime/app/FrameStats.h"
@@ -49,16 +50,6 @@ double peakRssMb() {
     rusage u{};
     getrusage(RUSAGE_SELF, &u);
     return double(u.ru_maxrss) / 1024.0;
-}
-
-/** Resident set now (MB), from /proc/self/statm; 0 where unavailable. */
-double currentRssMb() {
-    FILE* f = std::fopen("/proc/self/statm", "r");
-    if (!f) return 0.0;
-    unsigned long long size = 0, resident = 0;
-    const int n = std::fscanf(f, "%llu %llu", &size, &resident);
-    std::fclose(f);
-    return n == 2 ? double(resident) * double(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0) : 0.0;
 }
 
 /** Orbit the overview viewpoint while time advances: deterministic and repeatable. */
@@ -163,7 +154,7 @@ int main(int argc, char** argv) {
             return 1;
         }
         const std::size_t layers = (*session)->scenario().layers.size();
-        const double rssOpen = currentRssMb();
+        const double rssOpen = bench::currentRssMb();
         Flight lod = fly(**session, w, h, frames, true);
         nlohmann::json r;
         r["size"] = std::to_string(w) + "x" + std::to_string(h);
@@ -184,7 +175,7 @@ int main(int argc, char** argv) {
         // full-resolution baseline below inflates it.
         r["peak_rss_mb_before_fullres"] = peakRssMb();
         r["rss_mb_session_open"] = rssOpen;
-        r["rss_mb_after_flight"] = currentRssMb();
+        r["rss_mb_after_flight"] = bench::currentRssMb();
         r["tiles_mean"] = mean(lod.tiles);
         r["frames_with_ancestor_tiles"] =
             std::count_if(lod.fromAncestor.begin(), lod.fromAncestor.end(), [](double x) { return x > 0; });

@@ -30,6 +30,7 @@ std::string FrameStats::toJson() const {
         frames["tiles_drawn"].push_back(f.tilesDrawn);
         frames["triangles"].push_back(f.triangles);
         frames["tiles_from_ancestor"].push_back(f.tilesFromAncestor);
+        frames["tiles_occluded"].push_back(f.tilesOccluded);
         frames["sequence_tiles_missing"].push_back(f.sequenceTilesMissing);
         frames["resident_bytes"].push_back(f.residentBytes);
         frames["data_time"].push_back(f.dataTime);

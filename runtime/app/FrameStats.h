@@ -16,6 +16,7 @@ struct FrameRecord {
     std::uint32_t tilesDrawn = 0;
     std::uint64_t triangles = 0;
     std::uint32_t tilesFromAncestor = 0;
+    std::uint32_t tilesOccluded = 0;  ///< hidden behind nearer terrain, not drawn
     std::uint32_t sequenceTilesMissing = 0;
     std::uint64_t residentBytes = 0;
     double dataTime = 0;  ///< scenario time shown (epoch seconds)

@@ -33,12 +33,13 @@ constexpr double kPauseHoldSeconds = 2.0;
 /** How long one frame may wait for its tiles before it is drawn with what is resident. */
 constexpr double kSettleTimeoutSeconds = 120.0;
 
-constexpr const char* kUsage = "usage: geokiosk render SCENARIO --out OUT [--time T | "
-                               "--from T0 --to T1 --fps N] [--size WxH] [--viewpoint NAME] "
-                               "[--stats STATS.json] [--reference lod|full] [--crf N] [--quiet] "
-                               "[--wall WALL.json --screen ID]\n"
-                               "  OUT: x.png | dir/ | x.mp4 (H.264) | x.mkv (FFV1 lossless) | "
-                               "x.webm (VP9)\n";
+constexpr const char* kUsage =
+    "usage: geokiosk render SCENARIO --out OUT [--time T | "
+    "--from T0 --to T1 --fps N] [--size WxH] [--viewpoint NAME] "
+    "[--stats STATS.json] [--reference lod|full] [--crf N] [--quiet] "
+    "[--occlusion-culling on|off] [--wall WALL.json --screen ID]\n"
+    "  OUT: x.png | dir/ | x.mp4 (H.264) | x.mkv (FFV1 lossless) | "
+    "x.webm (VP9)\n";
 
 int usage(const std::string& message) {
     std::fprintf(stderr, "geokiosk render: %s\n%s", message.c_str(), kUsage);
@@ -50,7 +51,7 @@ int usage(const std::string& message) {
 int runRenderCommand(const std::vector<std::string>& argv) {
     Args args("render",
               {"out", "time", "from", "to", "fps", "size", "viewpoint", "stats", "reference", "crf",
-               "wall", "screen"},
+               "wall", "screen", "occlusion-culling"},
               {"quiet"});
     if (!args.parse(argv)) return usage(args.error());
     if (args.help()) return showHelp(kUsage);
@@ -121,6 +122,9 @@ int runRenderCommand(const std::vector<std::string>& argv) {
     const auto reference = args.value("reference");
     if (reference && *reference != "lod" && *reference != "full")
         return usage("--reference wants lod or full, got '" + *reference + "'");
+    const auto occlusion = args.value("occlusion-culling");
+    if (occlusion && *occlusion != "on" && *occlusion != "off")
+        return usage("--occlusion-culling wants on or off, got '" + *occlusion + "'");
     std::error_code ec;
     if (!std::filesystem::exists(scenarioPath, ec)) {
         std::fprintf(stderr, "%s: scenario file not found\n", scenarioPath.c_str());
@@ -142,11 +146,14 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         return kExitCannotRun;
     }
     // --reference full: the same view at full resolution, to compare a LOD frame against.
-    auto session = Session::open(scenarioPath, *caps, [&reference](config::Scenario& sc) {
-        if (reference)
-            sc.terrain.reference =
-                *reference == "full" ? config::TerrainReference::Full : config::TerrainReference::Lod;
-    });
+    auto session =
+        Session::open(scenarioPath, *caps, [&reference, &occlusion](config::Scenario& sc) {
+            if (reference)
+                sc.terrain.reference = *reference == "full" ? config::TerrainReference::Full
+                                                            : config::TerrainReference::Lod;
+            // off: every selected tile drawn (the baseline of docs/terrain.md §10)
+            if (occlusion) sc.terrain.occlusionCulling = *occlusion == "on";
+        });
     if (!session) {
         printDiagnostics(session.diagnostics);
         return kExitBadInput;

@@ -217,6 +217,7 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     r.tilesDrawn = f.tilesDrawn;
     r.triangles = f.triangles;
     r.tilesFromAncestor = f.tilesFromAncestor;
+    r.tilesOccluded = f.tilesOccluded;
     r.sequenceTilesMissing = f.sequenceTilesMissing;
     r.residentBytes = f.residentBytes;
     r.dataTime = time;

@@ -169,6 +169,7 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
     if (const char* delay = std::getenv("GEOKIOSK_TEST_LOAD_DELAY_MS"))
         fn->setArtificialDelay(std::atof(delay) / 1000.0, s->testDelayedStore());
     s->mLoader = std::make_unique<loader::TileLoader>(loader::LoaderOptions{}, std::move(fn));
+    s->setOcclusionCulling(scenario.terrain.occlusionCulling);
     return s;
 }
 
@@ -452,8 +453,9 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
     std::sort(mDrawOrder.begin(), mDrawOrder.end(), [&](std::uint32_t a, std::uint32_t b) {
         return mSelection->tiles[a].distance < mSelection->tiles[b].distance;
     });
-    for (std::uint32_t index : mDrawOrder) {
-        const terrain::DrawTile& t = mSelection->tiles[index];
+    planOcclusion(camera, style.verticalScale);
+    for (std::size_t k = 0; k < mDrawOrder.size(); ++k) {
+        const terrain::DrawTile& t = mSelection->tiles[mDrawOrder[k]];
         if (!t.handle.valid()) continue;
         const GpuSlot& g = mGpu[t.handle.index()];
         const terrain::TilePayload* p = mCache->get(t.handle);
@@ -484,6 +486,7 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
             if (li == mFirstSequenceLayer) noteDrawnFrames(l, t);
         }
         if (mDetail && detailHides(t)) continue;  // entirely under the detail grid
+        if (occluded(k)) continue;                // behind nearer terrain (§10 of terrain.md)
         bindTileMappings(p->key.id);
         const int depthBelowMesh = t.id.level - t.geometry.id.level;
         if (t.clipped && t.domainLevel == t.geometry.id.level &&

@@ -19,6 +19,7 @@
 #include "runtime/math/Frustum.h"
 #include "runtime/render/GpuMesh.h"
 #include "runtime/render/MappingSet.h"
+#include "runtime/render/OcclusionQueries.h"
 #include "runtime/render/TerrainRenderer.h"
 #include "runtime/render/WarpedGridRenderer.h"
 #include "runtime/scene/CacheBudgets.h"
@@ -86,6 +87,11 @@ struct SceneFrameInfo {
     bool wantedSequenceResident = true;
     /** @brief The procedural detail grid drew this frame (overlay: "procedural detail"). */
     bool proceduralDetail = false;
+    // Occlusion culling (docs/terrain.md §10): tiles skipped as hidden behind nearer terrain.
+    std::uint32_t tilesOccluded = 0;
+    std::uint32_t occlusionQueries = 0;  ///< boxes tested
+    std::uint32_t occlusionRounds = 0;   ///< batches (each waits for the rasterizer once)
+    double occlusionMs = 0;              ///< issuing the boxes and waiting for their results
 };
 
 /** @brief Bytes held by the tile cache by kind, and loader requests waiting (kiosk /metrics). */
@@ -224,6 +230,12 @@ public:
      * (the quadtree's hole), false when it did not draw.
      */
     bool detailHole(glm::dvec2& min, glm::dvec2& max) const;
+    /**
+     * @brief Occlusion culling (terrain.occlusionCulling, default on; TerrainSceneOcclusion.cpp):
+     * tiles hidden behind nearer terrain drawn this frame are skipped. Off draws every tile.
+     */
+    void setOcclusionCulling(bool on);
+    bool occlusionCulling() const noexcept { return mOcclusionOn; }
 
 private:
     TerrainScene() = default;
@@ -397,6 +409,21 @@ private:
     std::vector<std::uint8_t> mGroupTileValid;           ///< per sync group, the tile drawn
     std::vector<std::optional<LensPlacement>> mLensPut;  ///< per lens: placed at run time
     std::vector<LensPlacement> mLensDrawn;               ///< per lens: last frame's placement
+    // TerrainSceneOcclusion.cpp: occlusion culling (W04 §5, docs/terrain.md §10).
+    void planOcclusion(const math::Camera& camera, float verticalScale);
+    /** @brief The tile at position k of the draw order is hidden (runs the rounds due first). */
+    bool occluded(std::size_t k);
+    void runOcclusionRound(std::size_t first, std::size_t last);
+    /** @brief World box (z as drawn) of what tile t draws; false: draw it untested. */
+    bool occlusionBox(const terrain::DrawTile& t, math::Aabb& box, double& postSpacing) const;
+    bool mOcclusionOn = false;
+    std::unique_ptr<render::OcclusionQueries> mOcclusionQueries;
+    std::vector<std::size_t> mOcclusionRounds;  ///< draw-order positions where batches start
+    std::size_t mNextOcclusionRound = 0;
+    std::vector<std::uint8_t> mOcclusionHidden;  ///< per draw-order position
+    std::vector<std::int32_t> mOcclusionSlots;   ///< per batch position: query slot or -1
+    const math::Camera* mOcclusionCamera = nullptr;
+    double mOcclusionVScale = 1.0;
 };
 
 }  // namespace kiosk::scene

@@ -43,6 +43,7 @@ expect 2 "--crf wants an integer 0..51" "$GK" render $DEMO --out "$tmp/x.mp4" --
 expect 2 "needs an even --size, got 321x181" "$GK" render $DEMO --out "$tmp/x.mp4" --size 321x181
 expect 2 "--display wants auto\|kms\|x11\|wayland\|headless.*did you mean 'kms'" "$GK" play $DEMO --display kmz
 expect 2 "--reference wants lod or full" "$GK" render $DEMO --out "$tmp/x.png" --reference exact
+expect 2 "--occlusion-culling wants on or off" "$GK" render $DEMO --out "$tmp/x.png" --occlusion-culling no
 expect 2 "--target-fps wants a number" "$GK" play $DEMO --display headless --target-fps -5
 # Bad input: exit 1, one line naming the file.
 expect 1 "nope.json: scenario file not found" "$GK" render nope.json --out "$tmp/x.png"
