@@ -74,3 +74,5 @@ if [[ -x "$BUILD/bench/bench-texcompress" ]]; then
 else
     echo '{"benchmark":"texture_compression","skipped":"libastcenc-dev not installed"}'
 fi
+# Local TINs (issue 20, Baumann 2000): import time, store size, TIN vs grid triangles, frame time with/without.
+/usr/bin/python3 "$ROOT/bench/tins/tins_bench.py" "$BUILD"

@@ -17,7 +17,8 @@ BUILD_PKGS=(build-essential cmake ninja-build pkg-config git
     libgdal-dev gdal-bin libnetcdf-dev libfreetype-dev fonts-dejavu-core
     libsystemd-dev libcpp-httplib-dev libwayland-dev wayland-protocols libzmq3-dev cppzmq-dev
     libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
-    libspng-dev libturbojpeg0-dev libmeshoptimizer-dev libastcenc-dev)
+    libspng-dev libturbojpeg0-dev libmeshoptimizer-dev libastcenc-dev
+    libcgal-dev libgmp-dev libmpfr-dev)
 TEST_PKGS=(xvfb xauth glslang-tools clang-14 libclang-rt-14-dev python3-prometheus-client weston lintian ffmpeg
     python3-jsonschema)
 

@@ -1,6 +1,7 @@
 #include "runtime/app/ImportCli.h"
 
 #include "runtime/app/ImportCommand.h"
+#include "runtime/app/LocalTinCommand.h"
 #include "runtime/app/TopographicCommand.h"
 #include "runtime/core/ExitCode.h"
 
@@ -19,6 +20,8 @@ int dispatch(const std::vector<std::string>& args) {
     }
     if (!args.empty() && args[0] == "topographic")
         return runImportTopographic({args.begin() + 1, args.end()});
+    if (!args.empty() && (args[0] == "breaklines" || args[0] == "model-mesh"))
+        return runImportLocalTins(args[0], {args.begin() + 1, args.end()});
     return runImportCommand(args);
 }
 

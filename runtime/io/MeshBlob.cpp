@@ -1,9 +1,10 @@
 #include "runtime/io/MeshBlob.h"
 
+#include "runtime/io/MeshStreams.h"
+
 #include <cmath>
 #include <cstring>
 #include <meshoptimizer.h>
-#include <mutex>
 
 namespace kiosk::io {
 
@@ -21,17 +22,10 @@ constexpr int kMaxPostIntervals = 4096;
 constexpr std::size_t kComponents = 8;  // uint16 per vertex in the blob
 constexpr std::size_t kVertexBytes = kComponents * sizeof(std::uint16_t);
 
-void putU32(std::vector<std::uint8_t>& b, std::size_t at, std::uint32_t v) {
-    for (int i = 0; i < 4; ++i) b[at + std::size_t(i)] = std::uint8_t(v >> (8 * i));
-}
 void putF64(std::vector<std::uint8_t>& b, std::size_t at, double v) {
     std::uint64_t u;
     std::memcpy(&u, &v, sizeof u);
     for (int i = 0; i < 8; ++i) b[at + std::size_t(i)] = std::uint8_t(u >> (8 * i));
-}
-std::uint32_t getU32(const std::uint8_t* p) {
-    return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 |
-           std::uint32_t(p[3]) << 24;
 }
 double getF64(const std::uint8_t* p) {
     std::uint64_t u = 0;
@@ -44,10 +38,6 @@ double getF64(const std::uint8_t* p) {
 }  // namespace
 
 std::vector<std::uint8_t> encodeMeshBlob(const QuantizedMesh& mesh) {
-    // Version 1 of the index codec (meshoptimizer >= 0.14) compresses about 10 % better; the
-    // setting is process-wide, so set it once.
-    static std::once_flag once;
-    std::call_once(once, [] { meshopt_encodeIndexVersion(1); });
     const std::size_t count = mesh.vertexCount();
     std::vector<std::uint16_t> packed(count * kComponents, 0);
     std::vector<float> normal4(count * 4, 0.0f);
@@ -66,38 +56,15 @@ std::vector<std::uint8_t> encodeMeshBlob(const QuantizedMesh& mesh) {
         for (int c = 0; c < 4; ++c)
             packed[v * kComponents + 4 + std::size_t(c)] =
                 std::uint16_t(oct[v * 4 + std::size_t(c)]);
-    // Vertices in first-use order: the delta coding of the vertex stream and the index codec
-    // both work best that way. Triangle order (the cell order) is unchanged.
+    // Vertices in first-use order, triangle order (the cell order) unchanged.
     std::vector<std::uint32_t> indices = mesh.indices;
-    std::size_t vCount = count;
-    if (count > 0 && !indices.empty()) {
-        std::vector<std::uint16_t> fetched(packed.size());
-        vCount = meshopt_optimizeVertexFetch(fetched.data(), indices.data(), indices.size(),
-                                             packed.data(), count, kVertexBytes);
-        fetched.resize(vCount * kComponents);
-        packed = std::move(fetched);
-    }
-    std::vector<std::uint8_t> vStream(meshopt_encodeVertexBufferBound(vCount, kVertexBytes));
-    vStream.resize(vCount ? meshopt_encodeVertexBuffer(vStream.data(), vStream.size(),
-                                                       packed.data(), vCount, kVertexBytes)
-                          : 0);
-    std::vector<std::uint8_t> iStream(meshopt_encodeIndexBufferBound(indices.size(), vCount));
-    iStream.resize(indices.empty() ? 0
-                                   : meshopt_encodeIndexBuffer(iStream.data(), iStream.size(),
-                                                               indices.data(), indices.size()));
-    std::vector<std::uint8_t> blob(kHeaderBytes + vStream.size() + iStream.size());
-    std::memcpy(blob.data(), kMagic, 4);
-    putU32(blob, 4, kVersion);
-    putU32(blob, 8, std::uint32_t(mesh.postIntervals));
-    putU32(blob, 12, std::uint32_t(vCount));
-    putU32(blob, 16, std::uint32_t(indices.size()));
-    putU32(blob, 20, std::uint32_t(vStream.size()));
-    putU32(blob, 24, std::uint32_t(iStream.size()));
+    const MeshStreams streams = encodeMeshStreams(packed.data(), count, kVertexBytes, indices);
+    std::vector<std::uint8_t> blob = blobWithStreams(kHeaderBytes, streams);
+    putStreamHeader(blob, kMagic, kVersion, std::uint32_t(mesh.postIntervals), streams,
+                    indices.size());
     putU32(blob, 28, mesh.splitTiers.empty() ? 0u : kFlagSplitTiers);
     putF64(blob, 32, mesh.zOffset);
     putF64(blob, 40, mesh.zScale);
-    std::memcpy(blob.data() + kHeaderBytes, vStream.data(), vStream.size());
-    std::memcpy(blob.data() + kHeaderBytes + vStream.size(), iStream.data(), iStream.size());
     return blob;
 }
 
@@ -116,14 +83,12 @@ Diagnostics decodeMeshBlob(const std::uint8_t* data, std::size_t size, const std
         d.error("STORE_MESH_CORRUPT", "", where, "stored mesh " + what);
         return d;
     };
-    if (!data || size < kHeaderBytes) return corrupt("is shorter than its header");
-    if (size > kMaxMeshBlobBytes) return corrupt("is larger than 16 MiB");
-    if (std::memcmp(data, kMagic, 4) != 0) return corrupt("does not start with 'KMSH'");
-    if (getU32(data + 4) != kVersion)
-        return corrupt("has version " + std::to_string(getU32(data + 4)) + " (this reads 1)");
-    const std::uint32_t n = getU32(data + 8);
-    const std::uint32_t vCount = getU32(data + 12), iCount = getU32(data + 16);
-    const std::uint32_t vBytes = getU32(data + 20), iBytes = getU32(data + 24);
+    StreamHeader h;
+    const std::string bad =
+        readStreamHeader(data, size, kHeaderBytes, kMaxMeshBlobBytes, kMagic, kVersion, h);
+    if (!bad.empty()) return corrupt(bad);
+    const std::uint32_t n = h.postIntervals, vCount = h.vertexCount, iCount = h.indexCount;
+    const std::uint32_t vBytes = h.vertexBytes, iBytes = h.indexBytes;
     const std::uint32_t flags = getU32(data + 28);
     m.zOffset = getF64(data + 32);
     m.zScale = getF64(data + 40);

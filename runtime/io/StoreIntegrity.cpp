@@ -7,6 +7,7 @@
 #include "runtime/io/SqliteDb.h"
 #include "runtime/io/StoreTables.h"
 #include "runtime/io/StoreWriter.h"
+#include "runtime/io/TinBlob.h"
 
 #include <cmath>
 #include <map>
@@ -49,6 +50,7 @@ public:
                       : what + " in " + std::to_string(tables.size()) + " tables (" + list + ")");
         }
         meshes(level);
+        tins(level);
         if (level == IntegrityLevel::Deep)
             for (const auto& t : mTables) tiles(t);
         if (mTileProblems > kMaxReportedTileProblems)
@@ -226,36 +228,43 @@ private:
         if (noStats.value_or(0) > 0) problem(t, "tiles without a kiosk_tile_stats row");
     }
 
-    // kiosk_tile_meshes (optional: stores imported before it mesh on load). Core: registered;
-    // Tables: every row belongs to a tile of an elevation layer; Deep: every blob decodes to a
-    // mesh on the grid's tiles.
-    void meshes(IntegrityLevel level) {
-        if (!mDb.tableExists(kTileMeshesTable)) return;
+    // Per-tile extension tables of elevation layers (kiosk_tile_meshes, kiosk_tile_tins; both
+    // optional). Core: registered; Tables: every row belongs to a tile of an elevation layer.
+    // False when the table is absent or the level stops here.
+    bool elevationTileRows(IntegrityLevel level, const char* table, const std::string& rows) {
+        if (!mDb.tableExists(table)) return false;
         if (count("SELECT COUNT(*) FROM gpkg_extensions WHERE table_name = ?1 AND "
                   "extension_name = ?1",
-                  kTileMeshesTable) != 1)
-            error(kTileMeshesTable, "table is not registered in gpkg_extensions");
-        if (level == IntegrityLevel::Core) return;
-        const auto foreign = count(
-            "SELECT COUNT(*) FROM kiosk_tile_meshes WHERE table_name NOT IN (SELECT table_name "
-            "FROM kiosk_layers WHERE kind = 'elevation')");
+                  table) != 1)
+            error(table, "table is not registered in gpkg_extensions");
+        if (level == IntegrityLevel::Core) return false;
+        const auto foreign = count("SELECT COUNT(*) FROM " + std::string(table) +
+                                   " WHERE table_name NOT IN (SELECT table_name "
+                                   "FROM kiosk_layers WHERE kind = 'elevation')");
         if (foreign.value_or(0) > 0)
-            error(kTileMeshesTable,
-                  std::to_string(*foreign) + " meshes of tables that are not elevation layers");
+            error(table, std::to_string(*foreign) + " " + rows +
+                             " of tables that are not elevation layers");
         for (const auto& t : mTables) {
             if (!t.scalar || !mDb.tableExists(t.name)) continue;
-            const auto orphans = count(
-                "SELECT COUNT(*) FROM kiosk_tile_meshes m WHERE m.table_name = ?1 AND NOT EXISTS "
-                "(SELECT 1 FROM " +
-                    quoteIdentifier(t.name) +
-                    " t WHERE t.zoom_level = "
-                    "m.zoom_level AND t.tile_column = m.tile_column AND t.tile_row = m.tile_row)",
-                t.name);
+            const auto orphans = count("SELECT COUNT(*) FROM " + std::string(table) +
+                                           " m WHERE m.table_name = ?1 AND NOT EXISTS "
+                                           "(SELECT 1 FROM " +
+                                           quoteIdentifier(t.name) +
+                                           " t WHERE t.zoom_level = "
+                                           "m.zoom_level AND t.tile_column = m.tile_column AND "
+                                           "t.tile_row = m.tile_row)",
+                                       t.name);
             if (orphans.value_or(0) > 0)
-                error(std::string(kTileMeshesTable) + "/" + t.name,
-                      std::to_string(*orphans) + " meshes of tiles the table does not have");
+                error(std::string(table) + "/" + t.name,
+                      std::to_string(*orphans) + " " + rows + " of tiles the table does not have");
         }
-        if (level != IntegrityLevel::Deep) return;
+        return level == IntegrityLevel::Deep;
+    }
+
+    // kiosk_tile_meshes (stores imported before it mesh on load). Deep: every blob decodes to a
+    // mesh on the grid's tiles.
+    void meshes(IntegrityLevel level) {
+        if (!elevationTileRows(level, kTileMeshesTable, "meshes")) return;
         auto st = mDb.prepare(
             "SELECT table_name, zoom_level, tile_column, tile_row, tier, mesh FROM "
             "kiosk_tile_meshes");
@@ -274,6 +283,32 @@ private:
                           "-post tiles, the grid's are " + std::to_string(mTileW);
             if (problem.empty() || ++mTileProblems > kMaxReportedTileProblems) continue;
             error(where, problem, "STORE_MESH_CORRUPT");
+        }
+    }
+
+    // kiosk_tile_tins (local TINs, import breaklines / model-mesh). Deep: every blob decodes
+    // (TinBlob.h checks) to a TIN of the grid's tile size.
+    void tins(IntegrityLevel level) {
+        if (!elevationTileRows(level, kTileTinsTable, "TINs")) return;
+        auto st = mDb.prepare(
+            "SELECT table_name, zoom_level, tile_column, tile_row, tin, tier FROM "
+            "kiosk_tile_tins");
+        if (!st) return;
+        TinMesh m;
+        while (st->step() == SQLITE_ROW) {
+            const TileId id{int(st->columnInt(1)), int(st->columnInt(2)), int(st->columnInt(3))};
+            const std::string where =
+                tileName(st->columnText(0), id) + " tier " + std::to_string(st->columnInt(5));
+            const auto [data, size] = st->columnBlob(4);
+            Diagnostics r = decodeTinBlob(data, size, where, m);
+            std::string problem;
+            if (r.hasErrors())
+                problem = r.firstError()->message;
+            else if (m.postIntervals != mTileW || m.postIntervals != mTileH)
+                problem = "stored TIN is for " + std::to_string(m.postIntervals) +
+                          "-post tiles, the grid's are " + std::to_string(mTileW);
+            if (problem.empty() || ++mTileProblems > kMaxReportedTileProblems) continue;
+            error(where, problem, "STORE_TIN_CORRUPT");
         }
     }
 

@@ -61,6 +61,12 @@ public:
         return mQueries.readMesh(layer, id, tolerance, baseTolerance, out);
     }
 
+    Result<bool> readTileTin(const std::string& layer, const TileId& id, double tolerance,
+                             TileTinRow& out) override {
+        if (!mHasTins) return false;
+        return mQueries.readTin(layer, id, tolerance, out);
+    }
+
 private:
     Diagnostics unknownLayer(const std::string& name, const char* what) const {
         Diagnostics d;
@@ -88,6 +94,7 @@ private:
     std::map<std::string, TileQueries::ScalarMeta> mMeta;
     std::map<std::string, std::vector<std::string>> mFrameTables;
     bool mHasMeshes = false;  // kiosk_tile_meshes exists (stores imported since issue 20)
+    bool mHasTins = false;    // kiosk_tile_tins exists (import breaklines / model-mesh)
 };
 
 Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
@@ -191,6 +198,7 @@ Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
                 return d;
             }
     mHasMeshes = mDb.tableExists(kTileMeshesTable);
+    mHasTins = mDb.tableExists(kTileTinsTable);
 
     if (mDb.tableExists(kSequencesTable)) {
         auto ss = mDb.prepare(

@@ -3,6 +3,7 @@
 #include "runtime/core/Result.h"
 #include "runtime/io/MeshBlob.h"
 #include "runtime/io/StoreTypes.h"
+#include "runtime/io/TinBlob.h"
 
 #include <cstdint>
 #include <filesystem>
@@ -58,6 +59,16 @@ public:
     virtual Result<bool> readTileMesh(const std::string& layer, const TileId& id, double tolerance,
                                       double baseTolerance, TileMeshRow& out) {
         (void)layer, (void)id, (void)tolerance, (void)baseTolerance, (void)out;
+        return false;
+    }
+    /**
+     * @brief The coarsest local TIN stored for an elevation tile within `tolerance`
+     * (kiosk_tile_tins), into `out` (its buffers reused); false when the tile has none that
+     * fine. STORE_TIN_CORRUPT when it does not decode.
+     */
+    virtual Result<bool> readTileTin(const std::string& layer, const TileId& id, double tolerance,
+                                     TileTinRow& out) {
+        (void)layer, (void)id, (void)tolerance, (void)out;
         return false;
     }
 };

@@ -4,6 +4,7 @@
 #include "runtime/io/MeshBlob.h"
 #include "runtime/io/SqliteDb.h"
 #include "runtime/io/StoreTypes.h"
+#include "runtime/io/TinBlob.h"
 
 #include <map>
 #include <optional>
@@ -23,6 +24,8 @@ inline constexpr const char* kTileStatsExtension = "kiosk_tile_stats";
 inline constexpr const char* kSequencesExtension = "kiosk_sequences";
 inline constexpr const char* kTileMeshesTable = "kiosk_tile_meshes";
 inline constexpr const char* kTileMeshesExtension = "kiosk_tile_meshes";
+inline constexpr const char* kTileTinsTable = "kiosk_tile_tins";
+inline constexpr const char* kTileTinsExtension = "kiosk_tile_tins";
 inline constexpr const char* kCoverageExtension = "gpkg_2d_gridded_coverage";
 /** @brief gpkg_extensions.definition of our extensions (plus "#extension_name"). */
 inline constexpr const char* kOurDefinition = "https://geokiosk.invalid/docs/store-format.md";
@@ -62,6 +65,13 @@ public:
      */
     Result<bool> readMesh(const std::string& table, const TileId& id, double tolerance,
                           double baseTolerance, TileMeshRow& out);
+    /**
+     * @brief Into `out` (buffers reused): the coarsest local TIN of a tile built within
+     * `tolerance` (kiosk_tile_tins, StoreTinQueries.cpp); false when the tile has none that
+     * fine. One that does not decode is STORE_TIN_CORRUPT naming the tile and tier.
+     */
+    Result<bool> readTin(const std::string& table, const TileId& id, double tolerance,
+                         TileTinRow& out);
     /** @brief Stats row, nullopt if absent. */
     std::optional<TileStats> stats(const std::string& table, const TileId& id);
 
@@ -71,7 +81,7 @@ private:
 
     SqliteDb* mDb;
     std::map<std::string, Statement> mScalar, mImage;
-    Statement mStats, mMesh;
+    Statement mStats, mMesh, mTin;
 };
 
 /** @brief `table/level/column/row`, the `where` of tile diagnostics. */

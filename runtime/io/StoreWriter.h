@@ -101,6 +101,20 @@ public:
     Diagnostics putTileMesh(const std::string& table, const TileId& id, int tier, double tolerance,
                             std::size_t vertices, std::size_t triangles, bool splitTiers,
                             const std::vector<std::uint8_t>& blob);
+    /**
+     * @brief Create kiosk_tile_tins (and register its extension) if the store has none yet;
+     * StoreWriterTins.cpp.
+     */
+    Diagnostics createTileTins();
+    /** @brief Remove the TINs an earlier import named `source` wrote for `table` (a re-import). */
+    Diagnostics deleteTileTins(const std::string& table, const std::string& source);
+    /** @brief The source of the TIN a tile has already (nullopt: none). */
+    std::optional<std::string> tileTinSource(const std::string& table, const TileId& id);
+    /** @brief Store (or replace) a tile's TIN of tolerance tier `tier` (encodeTinBlob output). */
+    Diagnostics putTileTin(const std::string& table, const TileId& id, int tier,
+                           const std::string& source, double tolerance, double maxError,
+                           std::size_t vertices, std::size_t triangles,
+                           const std::vector<std::uint8_t>& blob);
     /** @brief Every tile of a table, coarse levels first (for a pass over a finished layer). */
     Result<std::vector<TileId>> tileIds(const std::string& table);
 
@@ -122,7 +136,7 @@ private:
     std::optional<TileGrid> mGrid;
     std::unique_ptr<TileQueries> mQueries;
     std::map<std::string, Statement> mInsertTile;
-    Statement mInsertAncillary, mInsertStats, mInsertMesh;
+    Statement mInsertAncillary, mInsertStats, mInsertMesh, mInsertTin;
     std::map<std::string, double> mScaleOf;
     bool mCommitted = false;
 };

@@ -27,6 +27,27 @@ void markFailure(TilePayload& p, Diagnostics d) {
     p.diagnostics.append(d);
 }
 
+// Diagnostics of building a tile's mesh, placed in the store file and the tile.
+Diagnostics namedAfter(Diagnostics d, const std::string& file, const std::string& where) {
+    Diagnostics out;
+    for (Diagnostic e : d.items()) {
+        e.file = file;
+        e.where = where;
+        out.add(std::move(e));
+    }
+    return out;
+}
+
+// A stored form of the tile that cannot be used while the posts can: warnings, with what is
+// drawn instead.
+void warnInstead(const Diagnostics& d, const std::string& instead, TilePayload& p) {
+    for (Diagnostic e : d.items()) {
+        e.severity = Severity::Warning;
+        e.message += instead;
+        p.diagnostics.add(std::move(e));
+    }
+}
+
 }  // namespace
 
 void StoreTileLoader::loadArrivalThresholds(const LayerBinding& layer, int frame,
@@ -75,19 +96,43 @@ bool StoreTileLoader::loadStoredMesh(const LayerBinding& layer, const TileId& id
             return true;
         }
         p.mesh.reset();
-        for (Diagnostic e : d.items()) {
-            e.file = mReader->info().path;
-            e.where = tileName(layer.name, id);
-            row.diagnostics.add(std::move(e));
-        }
+        row.diagnostics.append(
+            namedAfter(std::move(d), mReader->info().path, tileName(layer.name, id)));
     }
     // A corrupt stored mesh costs only the time to mesh the posts, which are intact: say so
     // once for the tile and draw it anyway.
-    for (Diagnostic e : row.diagnostics.items()) {
-        e.severity = Severity::Warning;
-        e.message += " (meshed from the posts instead)";
-        p.diagnostics.add(std::move(e));
+    warnInstead(row.diagnostics, " (meshed from the posts instead)", p);
+    return false;
+}
+
+bool StoreTileLoader::loadTin(const LayerBinding& layer, const TileId& id, int tier,
+                              terrain::TilePayload& p) {
+    if (mOptions.fullResolution) return false;  // the reference draws the posts
+    const std::optional<io::TileStats> stats = mReader->tileStats(layer.name, id);
+    if (!stats) return false;  // absent or broken tile: readElevation says which
+    const double error = double(stats->geometricError);
+    // The coarsest TIN built within the tier's tolerance (none: other TerrainOptions, the grid).
+    Result<bool> row =
+        mReader->readTileTin(layer.name, id, mOptions.tinTolerance(error, tier), mTinRow);
+    if (row.ok() && !*row) return false;
+    if (row.ok()) {
+        const io::TileGrid& grid = mReader->info().grid;
+        const double skirt = mOptions.skirtDepth(grid, id.level, error, tier);
+        Diagnostics d =
+            mTins.build(mTinRow.mesh, id, grid, mTinRow.tolerance, skirt, p.mesh.emplace());
+        if (!d.hasErrors()) {
+            p.stats = stats;
+            // Lines can stand above or below the posts: the bounds must hold the TIN.
+            p.stats->minValue = std::min(p.stats->minValue, p.mesh->minZ);
+            p.stats->maxValue = std::max(p.stats->maxValue, p.mesh->maxZ);
+            return true;
+        }
+        p.mesh.reset();
+        row.diagnostics.append(
+            namedAfter(std::move(d), mReader->info().path, tileName(layer.name, id)));
     }
+    // The posts are intact: draw the grid mesh and say once for the tile why.
+    warnInstead(row.diagnostics, " (grid mesh drawn instead)", p);
     return false;
 }
 
@@ -156,6 +201,7 @@ TilePayload StoreTileLoader::load(const LoadRequest& request) {
     switch (layer.kind) {
         case io::LayerKind::Elevation: {
             // The elevation key's frame is the mesh's tolerance tier (TerrainOptions).
+            if (loadTin(layer, id, std::max(0, int(request.key.frame)), p)) break;
             if (loadStoredMesh(layer, id, std::max(0, int(request.key.frame)), p)) break;
             Result<io::RasterTile> r = mReader->readElevation(layer.name, id);
             if (!r.ok()) {
@@ -168,11 +214,8 @@ TilePayload StoreTileLoader::load(const LoadRequest& request) {
                 *r, mReader->info().grid, mOptions, mMesher, std::max(0, int(request.key.frame)));
             if (!mesh.ok()) {
                 p.status = TilePayload::Status::Failed;
-                for (Diagnostic d : mesh.diagnostics.items()) {
-                    d.file = mReader->info().path;
-                    d.where = tileName(layer.name, id);
-                    p.diagnostics.add(std::move(d));
-                }
+                p.diagnostics.append(namedAfter(std::move(mesh.diagnostics), mReader->info().path,
+                                                tileName(layer.name, id)));
                 return p;
             }
             p.mesh = std::move(*mesh.value);

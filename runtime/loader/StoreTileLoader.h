@@ -6,6 +6,7 @@
 #include "runtime/terrain/RtinMesher.h"
 #include "runtime/terrain/StoredMesh.h"
 #include "runtime/terrain/TerrainOptions.h"
+#include "runtime/terrain/TinTileMesh.h"
 
 #include <functional>
 #include <memory>
@@ -77,6 +78,13 @@ private:
     bool loadStoredMesh(const LayerBinding& layer, const TileId& id, int tier,
                         terrain::TilePayload& p);
 
+    /**
+     * @brief The tile's local TIN (kiosk_tile_tins) when it has one built at least as fine as
+     * `tier` asks (true); false for the grid mesh (no TIN, a full-resolution run, or a corrupt
+     * TIN: then a warning naming the tile is in `p`).
+     */
+    bool loadTin(const LayerBinding& layer, const TileId& id, int tier, terrain::TilePayload& p);
+
     std::vector<StoreOpener> mOpeners;
     std::vector<LayerBinding> mLayers;
     terrain::TerrainOptions mOptions;
@@ -86,6 +94,8 @@ private:
     terrain::RtinMesher mMesher;
     terrain::StoredMeshBuilder mStoredMeshes;
     io::TileMeshRow mMeshRow;  // decoded stored mesh, buffers reused from tile to tile
+    terrain::TinMeshBuilder mTins;
+    io::TileTinRow mTinRow;
     double mDelaySeconds = 0.0;
     int mDelayStore = -1;  ///< -1: every store is slow
 };

@@ -271,7 +271,8 @@ void TerrainScene::drainCompletions() {
             if (p.status == terrain::TilePayload::Status::Absent) mStats.markAbsent(p.key.id);
         }
         if (p.status == terrain::TilePayload::Status::Failed) noteFailure(p);
-        if (p.diagnostics.has("STORE_MESH_CORRUPT"))  // a bad stored mesh: drawn from the posts
+        // A bad stored mesh or TIN: drawn from the posts / as the grid, said once per tile.
+        if (p.diagnostics.has("STORE_MESH_CORRUPT") || p.diagnostics.has("STORE_TIN_CORRUPT"))
             KIOSK_LOG_WARN(kTag, "%s", p.diagnostics.format().c_str());
         const terrain::TileKey key = p.key;
         const std::size_t cpu = p.byteSize();

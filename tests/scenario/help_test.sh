@@ -32,6 +32,8 @@ for flag in --help -h; do
     check_help import imagery $flag
     check_help import sequence $flag
     check_help import topographic $flag
+    check_help import breaklines $flag
+    check_help import model-mesh $flag
 done
 # --help wins over other (even wrong) arguments, as with GNU tools.
 check_help render scenarios/none.json --help
