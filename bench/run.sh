@@ -33,6 +33,7 @@ fi
 "$BUILD/bench/bench-import"                 # 4k DEM vs gdal_translate + gdaladdo (--sizes 4096,16384)
 "$BUILD/bench/hillshade/hillshade_bench"    # 4k DEM vs gdaldem hillshade (--with-16k)
 "$BUILD/bench/bench-replay" scenarios/demo/rainier.json --anuga "$ROOT/../shared/data/anuga_sww_flood_timeseries/cairns.sww"  # sequences at 1280x720/1920x1080 vs the fill bound
+"$BUILD/bench/bench-products" "$ROOT/../shared/data/anuga_sww_flood_timeseries/cairns.sww"  # 0/1/3 derived product layers on the ANUGA replay
 # Kiosk operation (issue 15): soak (KIOSK_SOAK_FRAMES, default 1,000,000), restart, /metrics scrape.
 /usr/bin/python3 "$ROOT/bench/kiosk/kiosk_bench.py" soak "$BUILD/geokiosk" "$ROOT" --frames ${KIOSK_SOAK_FRAMES:-1000000}
 /usr/bin/python3 "$ROOT/bench/kiosk/kiosk_bench.py" restart "$BUILD/geokiosk" "$ROOT"

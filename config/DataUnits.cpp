@@ -33,7 +33,19 @@ void adoptDataUnits(Scenario& scenario, const StoreLookup& lookup) {
         auto [it, fresh] = found.emplace(transfer, units);
         if (!fresh && it->second && !sameUnits(*it->second, units)) it->second.reset();
     };
-    for (const Layer& l : scenario.layers) visit(l.source, l.transfer);
+    for (const Layer& l : scenario.layers) {
+        // Arrival and duration colour times; hazard colours classes (docs/products.md).
+        if (l.kind == LayerKind::Arrival || l.kind == LayerKind::Duration) {
+            const TransferFunctionDef* def = scenario.findTransfer(l.transfer);
+            if (!def || !def->function.units.empty()) continue;
+            auto [it, fresh] = found.emplace(l.transfer, l.product.timeUnits);
+            if (!fresh && it->second && !sameUnits(*it->second, l.product.timeUnits))
+                it->second.reset();
+            continue;
+        }
+        if (l.kind == LayerKind::Hazard) continue;
+        visit(l.source, l.transfer);
+    }
     for (const ProjectiveMapping& m : scenario.projectiveMappings) visit(m.data, m.transfer);
     for (const auto& [name, units] : found)
         if (units) scenario.transferFunctions[name].function.units = *units;

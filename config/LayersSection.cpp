@@ -61,16 +61,22 @@ void Reader::layers(const json& arr) {
         } else if (o.has("of")) {
             mC.error("SCENARIO_CONFLICT", o.at("of"), "\"of\" applies to difference layers only");
         }
+        if (kind) product(o, l);
         if (kind && *kind != LayerKind::Difference) {
-            const bool isSeq = *kind == LayerKind::Sequence;
+            const bool isSeq = *kind == LayerKind::Sequence || isProductKind(*kind);
             if (!isSeq && (o.has("interpolate") || o.has("nodataAs")))
                 mC.error("SCENARIO_CONFLICT", ptr,
                          "\"interpolate\" and \"nodataAs\" apply to sequence layers only");
+            if (isProductKind(*kind) && o.has("interpolate"))
+                mC.error("SCENARIO_CONFLICT", o.at("interpolate"),
+                         "\"interpolate\" applies to sequence layers only (a product follows its "
+                         "sequence's data between steps)");
             if (!o.has("source") && *kind != LayerKind::Topographic)
                 mC.error("SCENARIO_MISSING", ptr, "missing required property \"source\"");
             if (o.has("source") && isSeq && l.source.sequence.empty())
                 mC.error("SCENARIO_MISSING", o.at("source"),
-                         "a sequence layer needs \"sequence\" (the store's sequence name)");
+                         std::string("a ") + layerKindName(*kind) +
+                             " layer needs \"sequence\" (the store's sequence name)");
             if (o.has("source") && !isSeq && l.source.layer.empty() && !l.source.store.empty())
                 mC.error("SCENARIO_MISSING", o.at("source"), "missing required property \"layer\"");
             const bool needsTransfer = isSeq || *kind == LayerKind::Data;

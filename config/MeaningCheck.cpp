@@ -213,12 +213,75 @@ private:
         return true;
     }
 
+    // A product's options against its sequence (docs/products.md); its transfer function
+    // colours the product's values, not the sequence's.
+    void product(const Layer& l) {
+        const auto* info = store(l.source.store);
+        const auto* seq = info ? info->findSequence(l.source.sequence) : nullptr;
+        if (!seq) {
+            source(l.pointer + "/source", l.source, true, "", "", l.kind);
+            return;
+        }
+        sequenceTimes(l.pointer + "/source/sequence", *seq);
+        const ProductOptions& p = l.product;
+        if (!p.units.empty() && !sameUnits(p.units, seq->units))
+            error("SCENARIO_UNITS", p.pointer + "/units",
+                  "threshold stated in " + quote(p.units) + " but sequence " + quote(seq->name) +
+                      " is in " + quote(seq->units.empty() ? "(no units)" : seq->units) +
+                      "; give the threshold in the sequence's units");
+        if (l.kind == LayerKind::Hazard && !p.velocity.empty()) {
+            const auto* v = info->findSequence(p.velocity);
+            if (!v) {
+                unknown("SCENARIO_UNKNOWN_SEQUENCE", p.pointer + "/velocity", "sequence",
+                        p.velocity, l.source.store, info->sequences);
+            } else if (v->frameTimes != seq->frameTimes) {
+                error("SCENARIO_TIME_RANGE", p.pointer + "/velocity",
+                      "velocity sequence " + quote(v->name) + " does not have the frames of " +
+                          quote(seq->name) + " (" + std::to_string(v->frameTimes.size()) + " and " +
+                          std::to_string(seq->frameTimes.size()) + " frames)");
+            } else if (!v->units.empty() && !sameUnits(v->units, "m/s")) {
+                error("SCENARIO_UNITS", p.pointer + "/velocity",
+                      "velocity sequence " + quote(v->name) + " is in " + quote(v->units) +
+                          "; the hazard curves need m/s");
+            }
+        }
+        if (l.kind == LayerKind::Hazard && !seq->units.empty() && !sameUnits(seq->units, "m"))
+            error("SCENARIO_UNITS", l.pointer + "/source/sequence",
+                  "hazard classes need depth in metres; sequence " + quote(seq->name) + " is in " +
+                      quote(seq->units));
+        if (l.transfer.empty() || seq->frameMin.empty()) return;
+        const double lo = *std::min_element(seq->frameMin.begin(), seq->frameMin.end());
+        const double hi = *std::max_element(seq->frameMax.begin(), seq->frameMax.end());
+        const std::string what = "layer " + quote(l.id);
+        switch (l.kind) {
+            case LayerKind::Maximum:
+                transferFits(l.pointer + "/transfer", l.transfer,
+                             DataRange{lo, hi, seq->units, "maximum of " + quote(seq->name)});
+                break;
+            case LayerKind::Hazard:
+                transferFits(l.pointer + "/transfer", l.transfer,
+                             DataRange{1, 6, "", "hazard classes H1-H6"});
+                break;
+            default: {
+                // Times since the clock start: the range is known only once replayed.
+                DataRange r{0, -1, p.timeUnits, what + " (time)"};
+                transferFits(l.pointer + "/transfer", l.transfer, r);
+                if (p.hasThreshold && (p.threshold > hi || p.threshold < lo))
+                    warning("SCENARIO_DOMAIN", p.pointer + "/threshold",
+                            "threshold " + num(p.threshold) + " is outside the values of " +
+                                quote(seq->name) + " [" + num(lo) + ", " + num(hi) +
+                                "]; the product stays empty or full");
+            }
+        }
+    }
+
     void layer(const Layer& l) {
         if (l.kind == LayerKind::Difference) return;  // no source: its operands are layers
         // (Mappings place their data by their own rectangle: any store will do for them.)
         if (const auto* info = store(l.source.store);
             info && !sharesTerrainGrid(l.pointer + "/source/store", l.source.store, *info))
             return;
+        if (isProductKind(l.kind)) return product(l);
         source(l.pointer + "/source", l.source, l.kind == LayerKind::Sequence, l.transfer,
                l.pointer + "/transfer", l.kind);
     }

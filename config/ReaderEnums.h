@@ -16,6 +16,10 @@ inline const EnumTable<LayerKind> kLayerKinds = {{"thematic", LayerKind::Themati
                                                  {"data", LayerKind::Data},
                                                  {"sequence", LayerKind::Sequence},
                                                  {"normals", LayerKind::Normals},
+                                                 {"maximum", LayerKind::Maximum},
+                                                 {"arrival", LayerKind::Arrival},
+                                                 {"duration", LayerKind::Duration},
+                                                 {"hazard", LayerKind::Hazard},
                                                  {"difference", LayerKind::Difference}};
 inline const EnumTable<OperationType> kOperations = {
     {"opacity", OperationType::Opacity}, {"blend", OperationType::Blend},

@@ -71,8 +71,18 @@ enum class LayerKind {
     Data,
     Sequence,
     Normals,
+    // Derived products of a sequence (layers/products/, docs/products.md).
+    Maximum,
+    Arrival,
+    Duration,
+    Hazard,
     Difference,  ///< A - B of two scalar layers of the stack (layers/difference/)
 };
+/** @brief The kinds computed from a sequence's stored steps while replaying. */
+inline bool isProductKind(LayerKind k) noexcept {
+    return k == LayerKind::Maximum || k == LayerKind::Arrival || k == LayerKind::Duration ||
+           k == LayerKind::Hazard;
+}
 /** @brief How a layer combines with the result of the layers below it (Döllner's operations). */
 enum class OperationType {
     Opacity,   ///< alpha-over with a constant opacity (the default)
@@ -95,6 +105,21 @@ struct Operation {
  * @brief One entry of the ordered layer stack. Layers are applied bottom (index 0) to top; each
  * operation takes the result of all layers below it (chaining).
  */
+/** @brief A derived product's options (the layer's "product" object, docs/products.md). */
+struct ProductOptions {
+    double threshold = 0;  ///< arrival, duration: in the sequence's units
+    bool hasThreshold = false;
+    std::string units;            ///< units the threshold is stated in ("": the sequence's)
+    std::string timeUnits = "h";  ///< arrival, duration: "h", "min" or "s"
+    std::string velocity;         ///< hazard: velocity sequence of the same store ("": depth only)
+    double isochrones = 0;        ///< arrival: draw only lines every this many time units (0: fill)
+    std::string pointer;          ///< "/layers/3/product" (or the layer's pointer when absent)
+    /** @brief Seconds per time unit (h 3600, min 60, s 1). */
+    double unitSeconds() const noexcept {
+        return timeUnits == "s" ? 1.0 : timeUnits == "min" ? 60.0 : 3600.0;
+    }
+};
+
 struct Layer {
     std::string id;
     LayerKind kind = LayerKind::Thematic;
@@ -106,7 +131,8 @@ struct Layer {
     std::optional<double> nodataAs;  ///< sequence: nodata counts as this value when blending
     /** @brief difference: the ids of the layers A and B (value = A - B), JSON "of". */
     std::vector<std::string> operands;
-    std::string pointer;  ///< e.g. "/layers/2"
+    ProductOptions product;          ///< product kinds (isProductKind) only
+    std::string pointer;             ///< e.g. "/layers/2"
 };
 
 /** @brief A named transfer function and where it came from. */
@@ -258,6 +284,8 @@ struct LegendOverlay {
     std::string transfer;
     Corner position = Corner::BottomRight;
     std::string title;  ///< empty: the transfer function's label
+    /** @brief A layer's own legend: its transfer function, its kind's title (products). */
+    std::string layer;
 };
 struct TimeLabelOverlay {
     bool enabled = false;

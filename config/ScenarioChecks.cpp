@@ -101,6 +101,23 @@ void Reader::crossReferences() {
         }
     }
     auto& legend = mS.overlays.legend;
+    if (!legend.layer.empty()) {
+        // A layer's own legend: its transfer function, the title its kind gives.
+        const Layer* shown = nullptr;
+        for (const auto& l : mS.layers)
+            if (l.id == legend.layer) shown = &l;
+        if (!shown)
+            reference("/overlays/legend/layer", "layer", legend.layer, layerIds);
+        else if (shown->transfer.empty())
+            mC.error("SCENARIO_BAD_VALUE", "/overlays/legend/layer",
+                     "layer \"" + legend.layer + "\" has no transfer function to show");
+        else if (!legend.transfer.empty() && legend.transfer != shown->transfer)
+            mC.error("SCENARIO_CONFLICT", "/overlays/legend/transfer",
+                     "give either \"layer\" or \"transfer\": layer \"" + legend.layer +
+                         "\" uses \"" + shown->transfer + "\"");
+        else
+            legend.transfer = shown->transfer;
+    }
     if (legend.enabled && legend.transfer.empty()) {
         for (const auto& l : mS.layers)
             if (!l.transfer.empty()) {

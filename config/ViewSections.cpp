@@ -82,6 +82,7 @@ void Reader::overlays(const json& j) {
             assign(ov.legend.transfer, lo.name("transfer"));
             assign(ov.legend.position, lo.oneOf("position", kCorners));
             assign(ov.legend.title, lo.str("title"));
+            assign(ov.legend.layer, lo.name("layer"));
         }
     }
     if (const json* t = o.get("timeLabel")) {

@@ -4,7 +4,9 @@
 #include "layers/LayerShader.h"
 #include "runtime/anim/FrameBracket.h"
 #include "runtime/io/StoreTypes.h"
+#include "runtime/loader/Derivation.h"
 
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -35,12 +37,28 @@ struct SourcePlan {
     anim::Interpolation interpolation = anim::Interpolation::None;
     /** @brief Transfer function colouring the values (LUT and legend); empty: none. */
     std::string transfer;
+    /**
+     * @brief Derived products (layers/products/): the tiles of each frame are derived on the
+     * loader thread from the stored frames (a cumulative product's state with the frame pair,
+     * or a hazard class), served and committed like the frames; null: the stored frames.
+     */
+    std::shared_ptr<const loader::Derivation> frames;
+    /**
+     * @brief uLayerProduct<i> = (time of the pair's first frame, the pair's interval) in units
+     * of `timeUnit` seconds since `timeOrigin` (epoch seconds).
+     */
+    bool productClock = false;
+    double timeOrigin = 0, timeUnit = 3600;
+    /** @brief A kind whose GLSL depends on the layer's options builds its piece in plan(). */
+    std::shared_ptr<const LayerShader> piece;
 };
 
 /** @brief What the scene offers a kind while planning: the terrain store's metadata. */
 struct StoreView {
     const io::StoreInfo& info;
     const std::string& elevation;  ///< the terrain's elevation layer name
+    /** @brief Epoch seconds products count time from (the clock start); NaN: none given. */
+    double timeOrigin = std::numeric_limits<double>::quiet_NaN();
 };
 
 /**
@@ -58,6 +76,14 @@ public:
                              SourcePlan& out) const = 0;
     /** @brief The compositor's piece for a layer planned as `plan`. */
     virtual std::shared_ptr<const LayerShader> shader(const SourcePlan& plan) const = 0;
+    /**
+     * @brief The title of the layer's own legend (overlays.legend.layer); empty: the transfer
+     * function's label. Units follow from the transfer function.
+     */
+    virtual std::string legendTitle(const config::Layer& layer, const SourcePlan& plan) const {
+        (void)layer, (void)plan;
+        return {};
+    }
 };
 
 }  // namespace kiosk::layers

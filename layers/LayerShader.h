@@ -56,6 +56,11 @@ public:
      * where such a layer shows (render/ProceduralDetailGlsl.h).
      */
     virtual bool coloursData() const { return false; }
+    /**
+     * @brief Reads `uniform vec4 uLayerProduct<i>` = (time of the pair's first frame, the
+     * pair's interval) in the product's time unit (derived products, layers/products/).
+     */
+    virtual bool productUniform() const { return false; }
 };
 
 }  // namespace kiosk::layers

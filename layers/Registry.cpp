@@ -1,8 +1,12 @@
 #include "layers/Registry.h"
 
+#include "layers/arrival/Arrival.h"
 #include "layers/data/Data.h"
 #include "layers/difference/Difference.h"
+#include "layers/duration/Duration.h"
+#include "layers/hazard/Hazard.h"
 #include "layers/luminance/Luminance.h"
+#include "layers/maximum/Maximum.h"
 #include "layers/normals/Normals.h"
 #include "layers/sequence/Sequence.h"
 #include "layers/thematic/Thematic.h"
@@ -32,6 +36,10 @@ Registry& registry() {
         k.add("visibility", std::make_unique<VisibilityKind>());
         k.add("data", std::make_unique<DataKind>());
         k.add("sequence", std::make_unique<SequenceKind>());
+        k.add("maximum", std::make_unique<MaximumKind>());
+        k.add("arrival", std::make_unique<ArrivalKind>());
+        k.add("duration", std::make_unique<DurationKind>());
+        k.add("hazard", std::make_unique<HazardKind>());
         k.add("difference", std::make_unique<DifferenceKind>());
         return k;
     }();

@@ -246,7 +246,10 @@ void Session::drawLegend(const config::LegendOverlay& legend, int width, int hei
     // Title, ticks and patches depend only on the scenario: made once, drawn every frame.
     if (mLegendFor != def) {
         mLegendFor = def;
+        const std::string kindTitle =
+            legend.layer.empty() ? std::string() : mScene->legendTitle(legend.layer);
         mLegendTitle = !legend.title.empty() ? legend.title
+                       : !kindTitle.empty()  ? kindTitle
                        : !def->label.empty() ? def->label
                                              : def->name;
         if (!tf.units.empty()) mLegendTitle += " (" + tf.units + ")";

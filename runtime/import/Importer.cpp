@@ -650,6 +650,15 @@ Diagnostics importSwwElevation(const std::string& source, const ImportOptions& o
     return warnings;
 }
 Diagnostics importSww(const std::string& source, const ImportOptions& o) {
+    // --variable: depth (stage - elevation, the default) or velocity (|momentum| / depth).
+    const bool velocity = o.variable == "velocity";
+    if (!o.variable.empty() && o.variable != "depth" && !velocity) {
+        Diagnostics d;
+        d.error(
+            "IMPORT_USAGE", source, "--variable",
+            "an SWW file gives --variable depth (default) or velocity, not \"" + o.variable + "\"");
+        return d;
+    }
     auto mesh = SwwMesh::open(source);
     if (!mesh) return mesh.diagnostics;
     if (mesh->steps() < 1) {
@@ -673,9 +682,10 @@ Diagnostics importSww(const std::string& source, const ImportOptions& o) {
         const io::TileGrid& g = *w.grid();
         io::SequenceSpec spec;
         spec.name = o.name;
-        spec.units = o.units.value_or("m");
-        spec.variable = "depth";
-        spec.description = "stage - elevation from " + fs::path(source).filename().string();
+        spec.units = o.units.value_or(velocity ? "m/s" : "m");
+        spec.variable = velocity ? "velocity" : "depth";
+        spec.description = (velocity ? "|momentum| / depth from " : "stage - elevation from ") +
+                           fs::path(source).filename().string();
         e.append(w.createSequence(spec));
         const auto existing = w.sequenceTimes(o.name);
         if (!existing.empty() && times.front() <= existing.back()) {
@@ -688,7 +698,7 @@ Diagnostics importSww(const std::string& source, const ImportOptions& o) {
         PlacedSource ps;
         ps.window = *win;
         for (int s = 0; s < mesh->steps(); ++s) {
-            auto depth = mesh->depth(s);
+            auto depth = velocity ? mesh->velocity(s, o.wetThreshold) : mesh->depth(s);
             if (!depth) return depth.diagnostics;
             double lo = 1e300, hi = -1e300;
             for (float v : *depth) {

@@ -278,6 +278,22 @@ Result<std::vector<float>> SwwMesh::depth(int step) const {
     return stage;
 }
 
+Result<std::vector<float>> SwwMesh::velocity(int step, double wetThreshold) const {
+    auto depthNow = depth(step);
+    if (!depthNow) return depthNow;
+    auto xm = readPoints("xmomentum", true, step);
+    if (!xm) return xm;
+    auto ym = readPoints("ymomentum", true, step);
+    if (!ym) return ym;
+    std::vector<float>& out = *depthNow;
+    const double wet = std::max(wetThreshold, 1e-6);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        const double d = out[i];
+        out[i] = d < wet ? 0.0f : float(std::hypot(double((*xm)[i]), double((*ym)[i])) / d);
+    }
+    return depthNow;
+}
+
 Result<std::vector<float>> SwwMesh::elevation(int step) const {
     return readPoints(mElevationVar, mElevationPerStep, step);
 }

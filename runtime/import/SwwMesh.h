@@ -43,6 +43,13 @@ public:
     Result<std::vector<float>> elevation(int step = 0) const;
     /** @brief depth = stage - elevation at every point for one step (NaN-free). */
     Result<std::vector<float>> depth(int step) const;
+    /**
+     * @brief Flow speed |(xmomentum, ymomentum)| / depth (m/s) at every point for one step; 0
+     * where the depth is below `wetThreshold` (ANUGA's momentum is depth-integrated: dividing by
+     * a vanishing depth gives noise, not speed). IMPORT_SWW when the file has no momentum
+     * (old-format files store stage only).
+     */
+    Result<std::vector<float>> velocity(int step, double wetThreshold) const;
 
     /**
      * @brief Rows of a rasterised step on a grid window: pixel centres inside a triangle get the

@@ -132,6 +132,8 @@ struct RasterTile {
     TileId id;
     int postsX = 0;
     int postsY = 0;
+    /** @brief Floats per post (4: a derived product's tile, loader/Derivation.h). */
+    int channels = 1;
     std::vector<float> values;  ///< row-major, north row first
     TileStats stats;
 

@@ -70,6 +70,37 @@ void StoreTileLoader::loadArrivalThresholds(const LayerBinding& layer, int frame
     r0.values = std::move(thresholds);
 }
 
+void StoreTileLoader::loadDerived(int binding, const LayerBinding& layer,
+                                  const terrain::TileKey& key, terrain::TilePayload& p) {
+    const Derivation& d = *layer.derivation;
+    if (d.stateFloats() > 0) {
+        io::RasterTile out;
+        Diagnostics diags =
+            mDerived.compute(binding, d, *mReader, layer.name, key.frame, key.id, out);
+        if (diags.hasErrors()) return markFailure(p, std::move(diags));
+        p.raster = std::move(out);
+        return;
+    }
+    Result<io::RasterTile> r = mReader->readSequenceFrame(layer.name, key.frame, key.id);
+    if (!r.ok()) return markFailure(p, std::move(r.diagnostics));
+    std::vector<float> other;
+    if (!d.companion().empty()) {
+        Result<io::RasterTile> c = mReader->readSequenceFrame(d.companion(), key.frame, key.id);
+        if (!c.ok()) return markFailure(p, std::move(c.diagnostics));
+        if (c->values.size() != r->values.size()) {
+            Diagnostics diags;
+            diags.error("LOADER_DERIVED_FRAME", mReader->info().path, d.companion(),
+                        "tile " + std::to_string(key.id.level) + "/" +
+                            std::to_string(key.id.column) + "/" + std::to_string(key.id.row) +
+                            " differs in size from " + layer.name + "'s");
+            return markFailure(p, std::move(diags));
+        }
+        other = std::move(c->values);
+    }
+    d.combine(r->values, other);
+    p.raster = std::move(*r.value);
+}
+
 bool StoreTileLoader::loadStoredMesh(const LayerBinding& layer, const TileId& id, int tier,
                                      terrain::TilePayload& p) {
     // Without stats the tile is absent or broken: readElevation says which.
@@ -232,6 +263,11 @@ TilePayload StoreTileLoader::load(const LoadRequest& request) {
             break;
         }
         case io::LayerKind::Sequence: {
+            if (layer.derivation) {
+                loadDerived(int(request.key.layer), layer, request.key, p);
+                if (!p.raster) return p;
+                break;
+            }
             Result<io::RasterTile> r =
                 mReader->readSequenceFrame(layer.name, request.key.frame, id);
             if (!r.ok()) {

@@ -2,6 +2,7 @@
 
 #include "runtime/core/Result.h"
 #include "runtime/io/StoreReader.h"
+#include "runtime/loader/DerivedTiles.h"
 #include "runtime/loader/TileLoader.h"
 #include "runtime/terrain/RtinMesher.h"
 #include "runtime/terrain/StoredMesh.h"
@@ -28,6 +29,11 @@ struct LayerBinding {
     bool arrivalThresholds = false;
     std::optional<float> nodataAs = std::nullopt;  ///< arrival: the class nodata counts as
     int store = 0;  ///< which of the loader's stores holds the table (index into its openers)
+    /**
+     * @brief Sequence only: load values derived from the stored frames instead of a frame
+     * (derived products, loader/Derivation.h); null: the stored frame.
+     */
+    std::shared_ptr<const Derivation> derivation = nullptr;
 };
 
 /** @brief Opens this thread's own StoreReader, e.g. `[p] { return io::StoreReader::open(p); }`. */
@@ -67,9 +73,14 @@ public:
         mDelaySeconds = seconds;
         mDelayStore = store;
     }
+    /** @brief Bytes the running states of derived products may hold (set before start). */
+    void setDerivedBudget(std::size_t bytes) noexcept { mDerived.setBudget(bytes); }
 
 private:
     void loadArrivalThresholds(const LayerBinding& layer, int frame, terrain::TilePayload& p);
+    /** @brief A derived product's tile (binding.derivation set) into `p`. */
+    void loadDerived(int binding, const LayerBinding& layer, const terrain::TileKey& key,
+                     terrain::TilePayload& p);
     /**
      * @brief The tile's mesh from kiosk_tile_meshes when the store has one as fine as `tier`
      * asks (true); false to mesh the posts (none stored, or a corrupt one: then a warning
@@ -98,6 +109,7 @@ private:
     io::TileTinRow mTinRow;
     double mDelaySeconds = 0.0;
     int mDelayStore = -1;  ///< -1: every store is slow
+    DerivedTiles mDerived;  ///< running states of cumulative products, per tile
 };
 
 }  // namespace kiosk::loader

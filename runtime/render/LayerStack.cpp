@@ -163,6 +163,8 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
         if (textures >= 3)
             s << "uniform sampler2D uLayerT" << i << ";\nuniform vec4 uLayerRectT" << i << ";\n";
         s << "uniform vec4 uLayerRect" << i << ";\nuniform vec4 uLayerParam" << i << ";\n";
+        if (pieces[std::size_t(i)]->productUniform())
+            s << "uniform vec4 uLayerProduct" << i << ";\n";
     }
     for (int k = 0; k < desc.lutCount; ++k) {
         s << "uniform sampler2D uLut" << k << ";\nuniform vec2 uLutDomain" << k

@@ -52,6 +52,8 @@ Result<TerrainRenderer> TerrainRenderer::create(const CompositeProgramDesc& desc
             r.mLayerLocs.back().texT = loc("uLayerT" + n);
             r.mLayerLocs.back().rectT = loc("uLayerRectT" + n);
         }
+        if (shaderOf(desc.layers[i])->productUniform())
+            r.mLayerLocs.back().product = loc("uLayerProduct" + n);
     }
     for (int k = 0; k < desc.lutCount; ++k) {
         const std::string n = std::to_string(k);
@@ -178,6 +180,7 @@ void TerrainRenderer::setLayer(int index, const LayerBinding& b) {
         glUniform4f(l.rectT, float(b.westT - mSceneOrigin.x), float(b.northT - mSceneOrigin.y),
                     float(1.0 / b.widthT), float(-1.0 / b.heightT));
     }
+    if (l.product >= 0) glUniform4f(l.product, b.product.x, b.product.y, b.product.z, b.product.w);
     // uv = (scenePos - (west, north)) * (1/width, -1/height): row 0 of a texture is its north edge.
     glUniform4f(l.rect, float(b.west - mSceneOrigin.x), float(b.north - mSceneOrigin.y),
                 float(1.0 / b.width), float(-1.0 / b.height));

@@ -49,6 +49,8 @@ struct LayerBinding {
     /** @brief Arrival sequences: threshold texture and its scene rectangle (as west..height). */
     GLuint textureT = 0;
     double westT = 0, northT = 0, widthT = 1, heightT = 1;
+    /** @brief Derived products: uLayerProduct (first frame's time, interval) in product units. */
+    glm::vec4 product{0.0f};
 };
 
 struct LutBinding {
@@ -142,6 +144,7 @@ private:
     struct LayerLoc {
         GLint tex = -1, texB = -1, rect = -1, param = -1;
         GLint texT = -1, rectT = -1;  ///< arrival sequences only
+        GLint product = -1;           ///< derived products only
     };
     struct LutLoc {
         GLint tex = -1, domain = -1, size = -1, nodata = -1, below = -1, above = -1;

@@ -56,6 +56,15 @@ gl::Texture makeScalarTexture(int width, int height, const float* values,
     return tex;
 }
 
+gl::Texture makeProductTexture(int width, int height, const float* rgba) {
+    auto tex = gl::Texture::create();
+    glBindTexture(GL_TEXTURE_2D, tex.id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA16F, width, height, 0, GL_RGBA, GL_FLOAT, rgba);
+    setLinearClamp();
+    return tex;
+}
+
 gl::Texture makeR8Texture(int width, int height, const std::uint8_t* values) {
     auto tex = gl::Texture::create();
     glBindTexture(GL_TEXTURE_2D, tex.id());

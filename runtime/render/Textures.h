@@ -26,6 +26,13 @@ gl::Texture makeLutTexture(int size, const std::uint8_t* rgba);
 gl::Texture makeScalarTexture(int width, int height, const float* values,
                               std::optional<float> nodataAs);
 
+/**
+ * @brief A derived product's tile (layers/products/): width x height texels of 4 floats, stored
+ * RGBA16F as given (the product's state and the frame pair, one texture read per fragment),
+ * linear filtering, clamped.
+ */
+gl::Texture makeProductTexture(int width, int height, const float* rgba);
+
 /** @brief Single-channel 8-bit texture (hillshade, luminance, visibility masks). */
 gl::Texture makeR8Texture(int width, int height, const std::uint8_t* values);
 

@@ -165,6 +165,8 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
     for (const auto& st : s->mLayerStores)
         openers.push_back([path = st.path] { return io::StoreReader::open(path); });
     auto fn = std::make_unique<loader::StoreTileLoader>(std::move(openers), bindings, s->mOptions);
+    // Running states of derived products (loader thread): a quarter of the CPU tile budget.
+    fn->setDerivedBudget(budget.cpuBytes / 4);
     // Test hook (atomic-step tests): a slow disk, in milliseconds per tile.
     if (const char* delay = std::getenv("GEOKIOSK_TEST_LOAD_DELAY_MS"))
         fn->setArtificialDelay(std::atof(delay) / 1000.0, s->testDelayedStore());
@@ -244,12 +246,17 @@ void TerrainScene::uploadPayload(terrain::TileHandle handle, terrain::TilePayloa
         payload.image->rgba = {};
     } else if (payload.raster) {
         const auto& r = *payload.raster;
-        bytes = std::max<std::size_t>(std::size_t(r.postsX) * std::size_t(r.postsY) * 4, 1);  // RG16F
+        // RG16F (value, validity), or RGBA16F for a derived product's tile (4 channels).
+        bytes = std::max<std::size_t>(
+            std::size_t(r.postsX) * std::size_t(r.postsY) * (r.channels == 4 ? 8 : 4), 1);
         if (!mCache->reserveGpu(handle, bytes)) return;
         std::optional<float> nodataAs;
         for (const auto& l : mLayers)
             if (l.keyLayer == int(payload.key.layer)) nodataAs = l.nodataAs;
-        slot.texture = render::makeScalarTexture(r.postsX, r.postsY, r.values.data(), nodataAs);
+        slot.texture =
+            r.channels == 4
+                ? render::makeProductTexture(r.postsX, r.postsY, r.values.data())
+                : render::makeScalarTexture(r.postsX, r.postsY, r.values.data(), nodataAs);
         slot.postsX = r.postsX;
         slot.postsY = r.postsY;
         payload.raster->values = {};
@@ -433,6 +440,14 @@ void TerrainScene::noteDrawnFrames(const StackLayer& l, const terrain::DrawTile&
         if (shown >= 0 && shown != a.key.frame) mFrame.mixedSequenceFrames = true;
         shown = a.key.frame;
     }
+    // A derived product's state (or arrival thresholds) belongs to the pair's first frame: a
+    // tile drawing another step's state mixes times as much as one drawing another frame.
+    if (l.specT >= 0 && int(t.textureCount) > l.specT) {
+        const auto& a = mSelection->textures[t.firstTexture + std::uint32_t(l.specT)];
+        if (!a.handle.valid() || a.fromAncestor) ++mFrame.shownTilesIncomplete;
+        if (a.handle.valid() && mFrame.shownFrameA >= 0 && a.key.frame != mFrame.shownFrameA)
+            mFrame.mixedSequenceFrames = true;
+    }
 }
 
 void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& style) {
@@ -475,8 +490,16 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
                     const auto& bb = mSelection->textures[t.firstTexture + std::uint32_t(l.specB)];
                     b.textureB = bb.handle.valid() ? mGpu[bb.handle.index()].texture.id() : b.texture;
                     b.alpha = float(l.shown.alpha);
+                } else if (l.sequence) {
+                    b.alpha = float(l.shown.alpha);  // products: the pair is in one texel
                 }
                 if (l.specT >= 0) bindArrival(l, t, b);
+                if (l.productClock) {
+                    const auto& ft = l.sequence->frameTimes;
+                    b.product = glm::vec4(float((ft[l.shown.i0] - l.timeOrigin) / l.timeUnit),
+                                          float((ft[l.shown.i1] - ft[l.shown.i0]) / l.timeUnit),
+                                          0.0f, 0.0f);
+                }
                 // A sync group draws on a tile only where every member has its frames there
                 // (alone, a layer shows what has arrived meanwhile): no side shows alone.
                 if (l.syncGroup >= 0 && !groupDrawsTile(l)) b.valid = false;

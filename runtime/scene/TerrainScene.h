@@ -194,6 +194,11 @@ public:
     std::vector<double> sequenceKeyTimes() const;
     const SceneLut* lut(const std::string& transferName) const;
     /**
+     * @brief The legend title layer `id`'s kind gives (products: what and since when, hazard:
+     * which curves or "depth only"); empty when the layer is not in the stack or has none.
+     */
+    std::string legendTitle(const std::string& id) const;
+    /**
      * @brief A chapter's override of layer `id`: hidden, or drawn with `opacity` (nullopt: the
      * scenario's). False if no such layer is in the stack.
      */
@@ -264,6 +269,10 @@ private:
         bool lastHolding = false;
         /** @brief interpolate "arrival": key layer and texture spec of the pair thresholds. */
         int keyLayerT = -1, specT = -1;
+        /** @brief Products: uLayerProduct = (first frame, interval) in timeUnit s since origin. */
+        bool productClock = false;
+        double timeOrigin = 0, timeUnit = 3600;
+        std::string legendTitle;  ///< the kind's legend title ("" : the transfer function's)
         /**
          * @brief Sequences that step together (a comparison lens's two sides, a difference's
          * operands): index into mGroupComplete, -1 alone (TerrainSceneLenses.cpp).

@@ -97,7 +97,9 @@ void TerrainScene::buildLayerStack(std::vector<loader::LayerBinding>& bindings,
                       "\" is registered";
         } else if (store >= 0) {
             const io::StoreInfo& info = mLayerStores[std::size_t(store)].reader->info();
-            problem = kind->plan(cl, layers::StoreView{info, mElevation->name}, plan);
+            layers::StoreView view{info, mElevation->name};
+            if (mScenario->clock) view.timeOrigin = mScenario->clock->start;
+            problem = kind->plan(cl, view, plan);
         }
         if (problem.empty() && plan.source == layers::SourceKind::Imagery) {
             sl.keyLayer = int(bindings.size());
@@ -107,7 +109,8 @@ void TerrainScene::buildLayerStack(std::vector<loader::LayerBinding>& bindings,
         } else if (problem.empty() && plan.source == layers::SourceKind::Sequence) {
             sl.sequence = plan.sequence;
             sl.keyLayer = int(bindings.size());
-            bindings.push_back({plan.table, io::LayerKind::Sequence, false, std::nullopt, store});
+            bindings.push_back(
+                {plan.table, io::LayerKind::Sequence, false, std::nullopt, store, plan.frames});
             sl.interpolation = plan.interpolation;
             sl.specA = int(setup.textures.size());
             setup.textures.push_back({std::uint16_t(sl.keyLayer), 0, plan.maxLevel});
@@ -115,6 +118,9 @@ void TerrainScene::buildLayerStack(std::vector<loader::LayerBinding>& bindings,
                 sl.specB = int(setup.textures.size());
                 setup.textures.push_back({std::uint16_t(sl.keyLayer), 0, plan.maxLevel});
             }
+            sl.productClock = plan.productClock;
+            sl.timeOrigin = plan.timeOrigin;
+            sl.timeUnit = plan.timeUnit;
             if (plan.thresholds) {
                 // Per-pixel thresholds of each frame pair, computed by the loader thread.
                 sl.keyLayerT = int(bindings.size());
@@ -132,6 +138,7 @@ void TerrainScene::buildLayerStack(std::vector<loader::LayerBinding>& bindings,
             continue;
         }
         comp.shader = kind->shader(plan);
+        sl.legendTitle = kind->legendTitle(cl, plan);
         if (comp.shader->usesLut()) {
             const auto* tf = mScenario->findTransfer(plan.transfer);
             SceneLut lut;
@@ -159,6 +166,10 @@ void TerrainScene::buildLayerStack(std::vector<loader::LayerBinding>& bindings,
     }
     for (std::size_t i = 0; i < mLayers.size(); ++i)
         if (mLayers[i].sequence && mLayers[i].specB >= 0 && mFirstSequenceLayer == SIZE_MAX)
+            mFirstSequenceLayer = i;
+    // A stack of products only (their frame pair is inside one derived tile): the first of them.
+    for (std::size_t i = 0; i < mLayers.size(); ++i)
+        if (mLayers[i].sequence && mLayers[i].productClock && mFirstSequenceLayer == SIZE_MAX)
             mFirstSequenceLayer = i;
     // Blend references and lenses name layers by id; resolve to stack indices.
     auto stackIndex = [&](const std::string& id) {
@@ -199,6 +210,12 @@ void TerrainScene::buildLayerStack(std::vector<loader::LayerBinding>& bindings,
         desc.lenses.push_back(cl);
     }
     buildSyncGroups(desc);
+}
+
+std::string TerrainScene::legendTitle(const std::string& id) const {
+    for (const auto& l : mLayers)
+        if (l.config->id == id) return l.legendTitle;
+    return {};
 }
 
 }  // namespace kiosk::scene

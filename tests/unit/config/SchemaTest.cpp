@@ -99,11 +99,17 @@ TEST(ScenarioSchema, EnumValuesAreAcceptedByTheReader) {
     const json schema = loadSchema();
     ASSERT_TRUE(schema.is_object());
     const json& layerKinds = schema["$defs"]["Layer"]["properties"]["kind"]["enum"];
-    ASSERT_EQ(layerKinds.size(), 8u);
+    ASSERT_EQ(layerKinds.size(), 12u);
     for (const auto& kind : layerKinds) {
         const std::string k = kind.get<std::string>();
-        const std::string source = k == "sequence" ? R"({"store": "v", "sequence": "s"})"
-                                                   : R"({"store": "v", "layer": "x"})";
+        // Sequences and the products derived from one read a sequence; arrival and duration
+        // need their threshold.
+        const bool seq = k == "sequence" || k == "maximum" || k == "arrival" || k == "duration" ||
+                         k == "hazard";
+        const std::string source =
+            std::string(seq ? R"({"store": "v", "sequence": "s"})"
+                            : R"({"store": "v", "layer": "x"})") +
+            (k == "arrival" || k == "duration" ? R"(, "product": {"threshold": 0.1})" : "");
         // A difference has no source: it subtracts two scalar layers of the stack.
         const std::string layer =
             k == "difference"

@@ -1,0 +1,175 @@
+// Derived products benchmark (issue 19): the frame time of the ANUGA cairns replay with 0, 1 and
+// 3 product layers (maximum; + arrival and duration) over the same depth sequence layer, in the
+// same run, headless on llvmpipe. Prints ONE JSON object with each configuration's frame time
+// and the cost of one product as a fraction of the frame it is drawn in (goal < 0.15).
+//
+// The three sessions are prepared once (view resident, the pair and the products' states on the
+// GPU), then drawn in turn, frame after frame, while the data time sweeps through the run, so
+// the three see the same machine load; the loader runs as in play (states of new steps are
+// computed on its thread, never on the frame).
+//
+// usage: bench-products CAIRNS.sww [--frames N] [--size WxH]
+#include "bench/common/HeadlessGl.h"
+#include "runtime/app/FrameStats.h"
+#include "runtime/app/Session.h"
+#include "runtime/core/Clock.h"
+#include "runtime/core/Strings.h"
+#include "runtime/core/TimeParse.h"
+#include "runtime/gl/RenderTarget.h"
+#include "runtime/import/Importer.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+using namespace kiosk;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kStart = "2026-03-14T00:00:00Z";
+
+std::string layer(const std::string& id, const std::string& kind, const std::string& extra) {
+    return R"({ "id": ")" + id + R"(", "kind": ")" + kind +
+           R"(", "source": { "store": "s", "sequence": "flood" }, "nodataAs": 0, )" + extra + "}";
+}
+
+std::string scenario(int products) {
+    std::string layers = layer("flood", "sequence", R"("transfer": "depth")");
+    if (products >= 1)
+        layers += ", " + layer("max", "maximum",
+                               R"("transfer": "depth", "operation": { "type": "opacity", "opacity": 0.5 })");
+    if (products >= 3) {
+        layers += ", " + layer("arr", "arrival",
+                               R"("transfer": "t", "operation": { "type": "opacity", "opacity": 0.5 },
+                                  "product": { "threshold": 0.1, "timeUnits": "min" })");
+        layers += ", " + layer("dur", "duration",
+                               R"("transfer": "t", "operation": { "type": "opacity", "opacity": 0.5 },
+                                  "product": { "threshold": 0.5, "timeUnits": "min" })");
+    }
+    return R"({ "version": 1, "title": "ANUGA products", "stores": { "s": "anuga.gpkg" },
+        "terrain": { "store": "s" },
+        "clock": { "start": ")" +
+           std::string(kStart) + R"(", "end": "2026-03-14T00:08:20Z", "rate": 10 },
+        "transferFunctions": {
+          "depth": { "units": "m", "stops": [ { "value": 0, "color": "#c6dbef00" },
+            { "value": 0.05, "color": "#6baed6" }, { "value": 2, "color": "#08306b" } ] },
+          "t": { "units": "min", "stops": [ { "value": 0, "color": "#440154" },
+            { "value": 8, "color": "#fde725" } ] } },
+        "layers": [ )" +
+           layers + " ] }";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string sww;
+    int frames = 120, w = 1280, h = 720;
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) {
+            frames = std::max(10, std::atoi(argv[++i]));
+        } else if (!std::strcmp(argv[i], "--size") && i + 1 < argc) {
+            if (auto wh = parseSize(argv[++i])) std::tie(w, h) = *wh;
+        } else if (argv[i][0] == '-') {
+            std::fprintf(stderr, "usage: bench-products CAIRNS.sww [--frames N] [--size WxH]\n");
+            return 2;
+        } else {
+            sww = argv[i];
+        }
+    }
+    nlohmann::json out;
+    out["benchmark"] = "products";
+    std::error_code ec;
+    if (sww.empty() || !fs::exists(sww, ec)) {
+        out["skipped"] = (sww.empty() ? std::string("no SWW given") : sww + " not present");
+        std::printf("%s\n", out.dump().c_str());
+        return 0;
+    }
+    auto headless = bench::openHeadlessGl();
+    if (!headless) return 3;
+    out["renderer"] = headless->caps.renderer;
+    const fs::path dir = fs::temp_directory_path() / ("kiosk-bench-products-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    import::ImportOptions o;
+    o.store = dir / "anuga.gpkg";
+    o.quiet = true;
+    o.name = "elevation";
+    Diagnostics d = import::importElevation(sww, o);
+    o.name = "flood";
+    o.start = *parseIso8601(kStart);
+    if (!d.hasErrors()) d.append(import::importSequence({sww}, o));
+    if (d.hasErrors()) {
+        std::fprintf(stderr, "%s", d.format().c_str());
+        fs::remove_all(dir, ec);
+        return 1;
+    }
+    const int counts[3] = {0, 1, 3};
+    std::vector<std::unique_ptr<app::Session>> sessions;
+    for (int n : counts) {
+        const fs::path file = dir / ("products" + std::to_string(n) + ".json");
+        std::ofstream(file) << scenario(n);
+        auto s = app::Session::open(file, headless->caps);
+        if (!s) {
+            std::fprintf(stderr, "%s", s.diagnostics.format().c_str());
+            fs::remove_all(dir, ec);
+            return 1;
+        }
+        sessions.push_back(std::move(*s.value));
+    }
+    auto target = gl::RenderTarget::create(w, h);
+    if (!target) return 3;
+    target->bind();
+    RealClock wall;
+    const double t0 = sessions[0]->startTime(), span = sessions[0]->endTime() - t0;
+    auto cameraOf = [&](app::Session& s) {
+        auto vp = s.viewpointAt(t0, "");
+        return app::makeCamera(vp ? *vp : s.terrain().overviewViewpoint(), s.terrain().bounds(),
+                               w, h, s.scenario().camera.fovY);
+    };
+    std::vector<std::vector<double>> ms(3);
+    std::vector<int> held(3, 0);
+    // The data time sweeps the run once; every session draws each time (after its loader has
+    // brought that step: the view is settled first, not timed, as a kiosk's prefetch would).
+    for (int f = 0; f < frames; ++f) {
+        const double t = t0 + span * (0.05 + 0.9 * double(f) / double(frames - 1));
+        for (std::size_t k = 0; k < sessions.size(); ++k) {
+            app::Session& s = *sessions[k];
+            const math::Camera cam = cameraOf(s);
+            for (int tries = 0; tries < 20000 && (tries == 0 || !s.terrain().settled()); ++tries) {
+                s.prepare(cam, t);
+                if (!s.terrain().settled()) usleep(500);
+            }
+            const double a = wall.now();
+            s.drawFrame(cam, t, w, h);
+            glFinish();
+            ms[k].push_back((wall.now() - a) * 1000.0);
+            held[k] += s.terrain().frameInfo().holdingSequence;
+        }
+    }
+    const double base = app::percentile(ms[0], 50);
+    out["size"] = std::to_string(w) + "x" + std::to_string(h);
+    out["frames_per_configuration"] = frames;
+    for (std::size_t k = 0; k < 3; ++k) {
+        const double p50 = app::percentile(ms[k], 50);
+        nlohmann::json r;
+        r["product_layers"] = counts[k];
+        r["frame_ms"] = {{"p50", p50}, {"p95", app::percentile(ms[k], 95)}};
+        r["held_frames"] = held[k];
+        if (counts[k] > 0) {
+            const double each = (p50 - base) / counts[k];
+            r["ms_per_product"] = each;
+            r["fraction_of_frame_per_product"] = each / std::max(1e-9, p50);
+            r["within_goal_0_15"] = each / std::max(1e-9, p50) < 0.15;
+        }
+        out["results"].push_back(r);
+    }
+    out["baseline"] = "0 product layers: the depth sequence layer alone, same run, same view and times";
+    sessions.clear();
+    fs::remove_all(dir, ec);
+    std::printf("%s\n", out.dump().c_str());
+    return 0;
+}

@@ -1,0 +1,58 @@
+// The "product" object of the derived-product layers (maximum, arrival, duration, hazard):
+// which options each kind takes and what each requires (docs/products.md). Compiled into
+// kiosk_config (config/CMakeLists.txt): the scenario reader calls it for every layer.
+#include "config/ScenarioSections.h"
+
+namespace kiosk::config::reader {
+namespace {
+
+const EnumTable<std::string> kTimeUnits = {{"h", "h"}, {"min", "min"}, {"s", "s"}};
+
+}  // namespace
+
+void Reader::product(const Obj& layer, Layer& l) {
+    const LayerKind kind = l.kind;
+    const json* j = layer.get("product");
+    l.product.pointer = j ? layer.at("product") : l.pointer;
+    if (!isProductKind(kind)) {
+        if (j)
+            mC.error("SCENARIO_CONFLICT", layer.at("product"),
+                     std::string("\"product\" applies to the product kinds (maximum, arrival, "
+                                 "duration, hazard), not to a ") +
+                         layerKindName(kind) + " layer");
+        return;
+    }
+    const bool thresholded = kind == LayerKind::Arrival || kind == LayerKind::Duration;
+    if (!j) {
+        if (thresholded)
+            mC.error(
+                "SCENARIO_MISSING", l.pointer,
+                std::string("an ") + layerKindName(kind) +
+                    " layer needs \"product\": {\"threshold\": ...} (in the sequence's units)");
+        return;
+    }
+    Obj o(mC, *j, layer.at("product"), "Product");
+    if (!o.valid()) return;
+    auto only = [&](const char* key, bool allowed, const char* kinds) {
+        if (o.has(key) && !allowed)
+            mC.error("SCENARIO_CONFLICT", o.at(key),
+                     std::string("\"") + key + "\" applies to " + kinds + " layers only");
+    };
+    only("threshold", thresholded, "arrival and duration");
+    only("units", thresholded, "arrival and duration");
+    only("timeUnits", thresholded, "arrival and duration");
+    only("isochrones", kind == LayerKind::Arrival, "arrival");
+    only("velocity", kind == LayerKind::Hazard, "hazard");
+    if (thresholded) {
+        if (auto t = o.num("threshold", kAny, true)) {
+            l.product.threshold = *t;
+            l.product.hasThreshold = true;
+        }
+        assign(l.product.units, o.name("units"));
+        assign(l.product.timeUnits, o.oneOf("timeUnits", kTimeUnits));
+    }
+    if (kind == LayerKind::Arrival) assign(l.product.isochrones, o.num("isochrones", kPositive));
+    if (kind == LayerKind::Hazard) assign(l.product.velocity, o.name("velocity"));
+}
+
+}  // namespace kiosk::config::reader

@@ -1,0 +1,109 @@
+#include "runtime/loader/DerivedTiles.h"
+
+#include <cmath>
+#include <iterator>
+
+namespace kiosk::loader {
+
+void DerivedTiles::keep(Track& t, int frame, const std::vector<float>& state) {
+    // The latest state replaces the previous latest unless that one is a checkpoint.
+    if (!t.states.empty()) {
+        auto last = std::prev(t.states.end());
+        if (last->first < frame && (last->first + 1) % kCheckpointEvery != 0) {
+            t.bytes -= last->second.size() * sizeof(float);
+            mBytes -= last->second.size() * sizeof(float);
+            t.states.erase(last);
+        }
+    }
+    auto [it, fresh] = t.states.try_emplace(frame, state);
+    if (!fresh) return;
+    t.bytes += state.size() * sizeof(float);
+    mBytes += state.size() * sizeof(float);
+}
+
+void DerivedTiles::evict(const Key& keepKey) {
+    while (mBytes > mBudget && mTracks.size() > 1) {
+        auto oldest = mTracks.end();
+        for (auto it = mTracks.begin(); it != mTracks.end(); ++it)
+            if (!(it->first == keepKey) &&
+                (oldest == mTracks.end() || it->second.lastUse < oldest->second.lastUse))
+                oldest = it;
+        if (oldest == mTracks.end()) return;
+        mBytes -= oldest->second.bytes;
+        mTracks.erase(oldest);
+    }
+}
+
+Diagnostics DerivedTiles::compute(int binding, const Derivation& d, io::StoreReader& reader,
+                                  const std::string& sequence, int frame, const TileId& id,
+                                  io::RasterTile& out) {
+    Diagnostics diags;
+    const io::SequenceInfo* seq = reader.info().findSequence(sequence);
+    if (!seq || frame < 0 || std::size_t(frame) >= seq->frameTimes.size()) {
+        diags.error("LOADER_DERIVED_FRAME", reader.info().path, sequence,
+                    "no frame " + std::to_string(frame) + " to derive from");
+        return diags;
+    }
+    const Key key{binding, id.packed()};
+    Track& track = mTracks[key];
+    track.lastUse = ++mUse;
+    // Resume from the latest kept state at or before `frame`.
+    std::vector<float> state;
+    int done = -1;
+    if (auto it = track.states.upper_bound(frame); it != track.states.begin()) {
+        --it;
+        state = it->second;
+        done = it->first;
+    }
+    const std::size_t floats = std::size_t(d.stateFloats());
+    // A frame read as the previous request's second frame is not read again.
+    auto read = [&](int j) -> Result<std::vector<float>> {
+        if (j == track.nextFrame) return track.next;
+        Result<io::RasterTile> r = reader.readSequenceFrame(sequence, j, id);
+        if (!r.ok()) return r.diagnostics;
+        track.postsX = r->postsX;
+        track.postsY = r->postsY;
+        return std::move(r->values);
+    };
+    for (int j = done + 1; j <= frame; ++j) {
+        Result<std::vector<float>> values = read(j);
+        if (!values.ok()) return values.diagnostics;
+        if (state.empty()) {
+            state.assign(values->size() * floats, 0.0f);
+            d.start(state);
+        }
+        if (state.size() != values->size() * floats) {
+            diags.error("LOADER_DERIVED_FRAME", reader.info().path, sequence,
+                        "frame " + std::to_string(j) + " of tile " + std::to_string(id.level) +
+                            "/" + std::to_string(id.column) + "/" + std::to_string(id.row) +
+                            " differs in size from the frames before it");
+            return diags;
+        }
+        d.advance(state, *values, seq->frameTimes[std::size_t(j)],
+                  j > 0 ? seq->frameTimes[std::size_t(j) - 1] : std::nan(""));
+        if ((j + 1) % kCheckpointEvery == 0 && j < frame) keep(track, j, state);
+    }
+    std::vector<float> next;
+    if (std::size_t(frame) + 1 < seq->frameTimes.size()) {
+        Result<std::vector<float>> values = read(frame + 1);
+        if (!values.ok()) return values.diagnostics;
+        next = std::move(*values.value);
+        if (next.size() * floats != state.size()) next.clear();
+    }
+    out.id = id;
+    out.postsX = track.postsX;
+    out.postsY = track.postsY;
+    out.channels = loader::Derivation::kProductChannels;
+    out.values.assign(state.size() / floats * std::size_t(out.channels), 0.0f);
+    d.finish(state, next, out.values);
+    track.nextFrame = next.empty() ? -1 : frame + 1;
+    const std::size_t was = track.next.size() * sizeof(float), now = next.size() * sizeof(float);
+    track.bytes = track.bytes - was + now;
+    mBytes = mBytes - was + now;
+    track.next = std::move(next);
+    keep(track, frame, state);
+    evict(key);
+    return diags;
+}
+
+}  // namespace kiosk::loader
