@@ -36,3 +36,13 @@ function(kiosk_test name)
         PROPERTIES LABELS "${ARG_LABEL}"
         DISCOVERY_TIMEOUT 60)
 endfunction()
+
+# A benchmark executable in BUILD/bench (bench/run.sh runs it; never part of ctest):
+# kiosk_bench(bench-x SOURCES x/XBench.cpp LIBS kiosk::app ...).
+function(kiosk_bench name)
+    cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
+    add_executable(${name} ${ARG_SOURCES})
+    kiosk_configure_target(${name})
+    target_link_libraries(${name} PRIVATE ${ARG_LIBS})
+    set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/bench)
+endfunction()
