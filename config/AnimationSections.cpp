@@ -135,7 +135,8 @@ void Reader::mappings(const json& arr) {
         }
         if (const json* r = o.object("route")) m.route = route(*r, o.at("route"));
         m.contextMatrix = o.numbers<16>("contextMatrix");
-        if (const json* d = o.get("data", !routed && !o.has("image")))
+        assign(m.layer, o.name("layer"));
+        if (const json* d = o.get("data", !routed && !o.has("image") && !o.has("layer")))
             assign(m.data, source(*d, o.at("data")));
         assign(m.transfer, o.name("transfer"));
         assign(m.colorMatrix, o.numbers<16>("colorMatrix"));
@@ -169,6 +170,7 @@ void Reader::mappings(const json& arr) {
             }
             keyOrder(m.keys, o.at("keys"));
         }
+        if (o.has("layer")) liveLayerMapping(o, m);
         mS.projectiveMappings.push_back(std::move(m));
     }
 }

@@ -233,6 +233,11 @@ struct ProjectiveMapping {
     Vec3 v{0, 1, 0};       ///< in-plane axis spanning texture t in [0,1]
     Mat3 textureMatrix{1, 0, 0, 0, 1, 0, 0, 0, 1};
     SourceRef data;
+    /**
+     * @brief A scalar layer of the stack (its id) instead of `data`: the mapping shows that
+     * layer's value at each point, live (data time, seeks, atomic steps), through `transfer`.
+     */
+    std::string layer;
     std::string transfer;  ///< optional: scalar data through a transfer function
     Mat4 colorMatrix{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     BlendFactor src = BlendFactor::SrcAlpha;

@@ -74,6 +74,7 @@ void Reader::crossReferences() {
             reference(lens.pointer + "/outside", "layer", lens.outside, layerIds);
     }
     comparisonReferences(layerIds);
+    mappingLayerReferences(layerIds);
     seen.clear();
     for (const auto& m : mS.projectiveMappings) {
         if (!m.id.empty() && !seen.insert(m.id).second)

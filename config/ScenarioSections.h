@@ -66,6 +66,8 @@ private:
     void crossReferences();
     /** @brief Difference operands and comparison-lens sides (ComparisonChecks.cpp). */
     void comparisonReferences(const std::vector<std::string>& layerIds);
+    void liveLayerMapping(const Obj& o, const ProjectiveMapping& m);
+    void mappingLayerReferences(const std::vector<std::string>& layerIds);
     // The path rule of config/PathPolicy.h; the file's name is quoted only as given.
     bool contained(const std::filesystem::path& file, const std::string& ptr);
 

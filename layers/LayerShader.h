@@ -23,7 +23,11 @@ public:
      * thresholds of the pair).
      */
     virtual int textures() const { return 1; }
-    /** @brief Coloured through a transfer-function LUT (uLut<k>, k = rank among such layers). */
+    /**
+     * @brief Coloured through a transfer-function LUT (uLut<k>, k = rank among such layers).
+     * Such a kind's statements define `vec2 d<i>` = (value x validity, validity) before the
+     * colour: a difference's operands and a mapping of the layer read it.
+     */
     virtual bool usesLut() const { return false; }
     /**
      * @brief GLSL functions emitted once per program however many layers of the kind there

@@ -53,6 +53,53 @@ std::string ProductSource::thresholdText(const config::Layer& layer, const Sourc
     return variable(plan) + " >= " + buf + (units.empty() ? "" : " " + units);
 }
 
+bool ProductSource::carriesFramesOf(const config::Layer& product, const config::Layer& sequence,
+                                    const std::string& terrainStore) {
+    using config::LayerKind;
+    const auto store = [&](const config::Layer& l) {
+        return l.source.store.empty() ? terrainStore : l.source.store;
+    };
+    const bool cumulative = product.kind == LayerKind::Maximum ||
+                            product.kind == LayerKind::Arrival ||
+                            product.kind == LayerKind::Duration;
+    // Without nodataAs a sequence layer fades its data edges in (validity is filtered), the
+    // product's frames hold a nodata sentinel: only with nodataAs do both show the same values.
+    return cumulative && product.enabled && sequence.kind == LayerKind::Sequence &&
+           sequence.interpolate == config::SequenceInterpolation::Data && sequence.nodataAs &&
+           product.nodataAs == sequence.nodataAs && store(product) == store(sequence) &&
+           product.source.sequence == sequence.source.sequence;
+}
+
+namespace {
+
+class SequenceFromProduct : public LayerShader {
+public:
+    int textures() const override { return 1; }  // its unit stays unbound: nothing is sampled
+    bool usesLut() const override { return true; }
+    bool coloursData() const override { return true; }
+    int operands() const override { return 1; }
+    void sample(std::ostream& s, int i, int lut) const override {
+        s << "    vec2 d" << i << " = vec2(0.0);\n";
+        ScalarSource::appendColour(s, i, lut);
+    }
+    void sampleFrom(std::ostream& s, int i, int lut, const int* operand) const override {
+        // The product's frames on screen, interpolated in data space (its cur<a>): what the
+        // layer's own frame pair would give, from the texel the product already read.
+        const int a = operand[0];
+        if (a < 0) return sample(s, i, lut);
+        s << "    vec2 d" << i << " = (cv" << a << " && uLayerParam" << a << ".w > 0.5) ? vec2(cur"
+          << a << ", 1.0) : vec2(0.0);\n";
+        ScalarSource::appendColour(s, i, lut);
+    }
+};
+
+}  // namespace
+
+std::shared_ptr<const LayerShader> ProductSource::sequenceFromProduct() {
+    static const auto piece = std::make_shared<SequenceFromProduct>();
+    return piece;
+}
+
 std::string ProductSource::literal(double v) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "float(%.9g)", v);

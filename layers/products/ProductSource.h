@@ -28,6 +28,16 @@ struct ProductSource {
     static std::string variable(const SourcePlan& plan);
     /** @brief A GLSL float literal of `v` (GLSL ES never converts int literals). */
     static std::string literal(double v);
+    /**
+     * @brief `product` (maximum, arrival or duration) carries the frame pair `sequence` draws:
+     * same store, sequence and nodataAs, values interpolated as data. The sequence layer then
+     * reads its value from the product's texel (sequenceFromProduct()) instead of its own two
+     * frame textures: one frame-pair read for both.
+     */
+    static bool carriesFramesOf(const config::Layer& product, const config::Layer& sequence,
+                                const std::string& terrainStore);
+    /** @brief The sequence layer's piece then: its operand is the product layer. */
+    static std::shared_ptr<const LayerShader> sequenceFromProduct();
 };
 
 }  // namespace kiosk::layers::products

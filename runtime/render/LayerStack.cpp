@@ -5,6 +5,7 @@
 #include "runtime/render/ProceduralDetailGlsl.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <set>
 #include <sstream>
 
@@ -52,6 +53,13 @@ constexpr const char* kSwipeMask =
     return smoothstep(-e, e, dot(p - lens.xy, normal));
 }
 )";
+
+// A double as a GLSL float literal that keeps its value (locale-independent).
+std::string glslFloat(double v) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "float(%.9g)", v);
+    return buf;
+}
 
 bool contains(const std::vector<int>& v, int i) {
     return std::find(v.begin(), v.end(), i) != v.end();
@@ -154,7 +162,10 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
     if (desc.mappingCapacity > 0) {
         auto text = gl::ShaderLibrary::source("common/mappings.glsl");
         if (!text) return text.diagnostics;
-        s << "#define KIOSK_MAX_MAPPINGS " << desc.mappingCapacity << "\n" << *text << "\n";
+        s << "#define KIOSK_MAX_MAPPINGS " << desc.mappingCapacity << "\n";
+        if (!desc.mappingInputs.empty())
+            s << "#define KIOSK_MAP_INPUTS " << desc.mappingInputs.size() << "\n";
+        s << *text << "\n";
     }
     for (int i = 0; i < n; ++i) {
         const int textures = pieces[std::size_t(i)]->textures();
@@ -252,7 +263,21 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
         s << "    }\n";
     }
     // Mappings draw on the composited stack and are lit with it (docs/projective-mappings.md).
-    if (desc.mappingCapacity > 0) s << "    C = applyMappings(C, vec3(vScenePos, vElevation));\n";
+    if (desc.mappingCapacity > 0) {
+        // Live mapping inputs: a stack layer's value where it has one, else nodata.
+        for (std::size_t k = 0; k < desc.mappingInputs.size(); ++k) {
+            const auto& in = desc.mappingInputs[k];
+            const bool scalar =
+                in.layer >= 0 && in.layer < n && pieces[std::size_t(in.layer)]->usesLut();
+            s << "    gMapInput[" << k << "] = ";
+            if (scalar)
+                s << "mapInputOf(d" << in.layer << ", uLayerParam" << in.layer << ".w, vec2("
+                  << glslFloat(in.domainMin) << ", " << glslFloat(in.domainMax) << "));\n";
+            else
+                s << "vec2(0.0);\n";
+        }
+        s << "    C = applyMappings(C, vec3(vScenePos, vElevation));\n";
+    }
     if (desc.proceduralDetail) s << ProceduralDetailGlsl::beforeLighting();
     s << "    C *= mix(1.0, lambert(vNormal, uLightDir, uAmbient), uGeometryLighting);\n";
     for (std::size_t j = 0; j < desc.lenses.size(); ++j) {

@@ -94,6 +94,18 @@ struct CompositeProgramDesc {
      */
     int mappingCapacity = 0;
     /**
+     * @brief Mapping inputs taken from the stack (a mapping with `layer`): input k is the value
+     * of stack layer `layer` at the fragment (its kind's `vec2 d<i>`, at the data time as the
+     * layer draws it), turned into the LUT coordinate of [domainMin, domainMax] the mapping's
+     * LUT row expects (render::MappingSet::addScalar's rule). A mapping reads input k when its
+     * MappingGpu::layer is -1 - k. Only with mappingCapacity > 0.
+     */
+    struct MappingInput {
+        int layer = -1;
+        double domainMin = 0, domainMax = 1;
+    };
+    std::vector<MappingInput> mappingInputs;
+    /**
      * @brief false: the base colour is uBaseColor alone and uElevLutWeight is ignored, which
      * saves the elevation LUT fetch per pixel (llvmpipe samples it even at weight 0).
      */

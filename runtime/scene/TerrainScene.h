@@ -404,9 +404,11 @@ private:
     /** @brief One scenario mapping and the array layers it samples. */
     struct SceneMapping {
         const config::ProjectiveMapping* config = nullptr;
-        int layer = -1;  ///< data layer (route: edge profile)
+        int layer = -1;  ///< data layer (route: edge profile); -1 - k: live input k
         int lut = -1;    ///< LUT row for scalar data, -1 for images
     };
+    /** @brief A mapping of a stack layer (`layer`): its LUT and live input; or why not. */
+    std::string liveMapping(const config::ProjectiveMapping& m, SceneMapping& sm);
     std::unique_ptr<render::MappingSet> mMappingSet;
     std::vector<SceneMapping> mMappings;
     std::vector<render::MappingGpu> mMappingGpu;

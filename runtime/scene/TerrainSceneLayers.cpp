@@ -4,9 +4,12 @@
 // sequences (TerrainScene.cpp update()).
 #include "config/StoreGrids.h"
 #include "layers/Registry.h"
+#include "layers/products/ProductSource.h"
 #include "runtime/core/Log.h"
 #include "runtime/loader/StoreTileLoader.h"
 #include "runtime/scene/TerrainScene.h"
+
+#include <algorithm>
 
 namespace kiosk::scene {
 namespace {
@@ -72,6 +75,20 @@ void TerrainScene::buildLayerStack(std::vector<loader::LayerBinding>& bindings,
     mLayers.reserve(mScenario->layers.size());
     mStatus.push_back({"terrain", LayerState::Ready, {}, 0});
     mKeyLayerStatus.push_back(0);
+    // A sequence layer drawn with a product of the same frames reads the product's texel (it
+    // holds the frame pair, docs/products.md): (stack index, product id).
+    std::vector<std::pair<int, std::string>> framesFromProduct;
+    // Not a difference's operand nor a comparison side: those keep their own frames and steps.
+    const auto stepsWithOthers = [&](const std::string& id) {
+        const auto named = [&](const std::vector<std::string>& ids) {
+            return std::find(ids.begin(), ids.end(), id) != ids.end();
+        };
+        for (const auto& l : mScenario->layers)
+            if (named(l.operands)) return true;
+        for (const auto& lens : mScenario->lenses)
+            if (named(lens.insideStack) || named(lens.outsideStack)) return true;
+        return false;
+    };
     for (const auto& cl : mScenario->layers) {
         if (!cl.enabled) continue;
         LayerStatus status{cl.id, LayerState::Ready, {}, 0};
@@ -138,6 +155,25 @@ void TerrainScene::buildLayerStack(std::vector<loader::LayerBinding>& bindings,
             continue;
         }
         comp.shader = kind->shader(plan);
+        if (plan.source == layers::SourceKind::Sequence &&
+            plan.interpolation == anim::Interpolation::Data && !stepsWithOthers(cl.id)) {
+            for (const auto& other : mScenario->layers) {
+                if (&other == &cl || !layers::products::ProductSource::carriesFramesOf(
+                                         other, cl, mScenario->terrain.store))
+                    continue;
+                // Loads and samples nothing of its own: no binding, no texture spec.
+                bindings.pop_back();
+                setup.textures.resize(std::size_t(sl.specA));
+                StackLayer plain;
+                plain.config = sl.config;
+                plain.strength = sl.strength;
+                plain.nodataAs = sl.nodataAs;
+                sl = std::move(plain);
+                comp.shader = layers::products::ProductSource::sequenceFromProduct();
+                framesFromProduct.emplace_back(int(mLayers.size()), other.id);
+                break;
+            }
+        }
         sl.legendTitle = kind->legendTitle(cl, plan);
         if (comp.shader->usesLut()) {
             const auto* tf = mScenario->findTransfer(plan.transfer);
@@ -209,6 +245,8 @@ void TerrainScene::buildLayerStack(std::vector<loader::LayerBinding>& bindings,
         if (lens.shape == config::LensShape::Swipe) cl.shape = render::LensShape::Swipe;
         desc.lenses.push_back(cl);
     }
+    for (const auto& [i, id] : framesFromProduct)
+        desc.layers[std::size_t(i)].operands = {stackIndex(id)};
     buildSyncGroups(desc);
 }
 

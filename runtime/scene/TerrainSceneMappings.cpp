@@ -45,7 +45,11 @@ Diagnostics TerrainScene::setupMappings(const gl::Caps& caps) {
         SceneMapping sm;
         sm.config = &m;
         std::string problem;
-        if (m.route) {
+        bool live = false;  // data = a layer of the stack (render input -1 - k)
+        if (!m.layer.empty()) {
+            live = true;
+            problem = liveMapping(m, sm);
+        } else if (m.route) {
             if (edgeLayer < 0) {
                 const auto edge = mapping::edgeProfileImage(64);
                 const auto disc = mapping::discImage(64);
@@ -96,7 +100,7 @@ Diagnostics TerrainScene::setupMappings(const gl::Caps& caps) {
                 }
             }
         }
-        if (problem.empty() && (sm.layer < 0 || (m.route && mRoutePointLayer < 0)))
+        if (problem.empty() && !live && (sm.layer < 0 || (m.route && mRoutePointLayer < 0)))
             problem = "more data layers than GL_MAX_ARRAY_TEXTURE_LAYERS";
         if (!problem.empty()) {
             // One bad mapping degrades itself, never the scene.
@@ -115,6 +119,27 @@ Diagnostics TerrainScene::setupMappings(const gl::Caps& caps) {
         pieces += r ? int(r->points.size()) * 2 : 1;
     }
     mDesc.mappingCapacity = std::clamp(pieces, 1, mMappingSet->capacity());
+    return {};
+}
+
+std::string TerrainScene::liveMapping(const config::ProjectiveMapping& m, SceneMapping& sm) {
+    // The layer's value at each fragment, as the stack samples it (so at the data time, after
+    // seeks, stepping atomically with the layer), through the mapping's own LUT.
+    int index = -1;
+    for (std::size_t i = 0; i < mLayers.size(); ++i)
+        if (mLayers[i].config->id == m.layer) index = int(i);
+    if (index < 0)
+        return "layer \"" + m.layer + "\" is not drawn (disabled, or FAILED: see its status)";
+    if (!render::shaderOf(mDesc.layers[std::size_t(index)])->usesLut())
+        return "layer \"" + m.layer + "\" has no values (a data, sequence or product layer has)";
+    const color::TransferFunction* tf = nullptr;
+    if (const auto* def = mScenario->findTransfer(m.transfer)) tf = &def->function;
+    if (!tf) return "a mapping of a layer needs a transfer function (\"transfer\")";
+    sm.lut = mMappingSet->addLut(color::buildLut(*tf, render::MappingSet::kLutEntries),
+                                 toDn(tf->below), toDn(tf->above));
+    if (sm.lut < 0) return "more LUTs than GL_MAX_ARRAY_TEXTURE_LAYERS";
+    sm.layer = -1 - int(mDesc.mappingInputs.size());
+    mDesc.mappingInputs.push_back({index, tf->domainMin, tf->domainMax});
     return {};
 }
 

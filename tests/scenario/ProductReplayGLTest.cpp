@@ -165,5 +165,34 @@ TEST_F(ProductReplay, SlowTilesNeverMixAStateWithAnotherStep) {
     EXPECT_EQ(maxDiff(rt.readColor().rgba, straight), 0);
 }
 
+// A sequence layer drawn with a product of its frames reads its value from the product's texel
+// (one frame-pair read for both, docs/products.md): the same pixels as the sequence alone.
+TEST_F(ProductReplay, SequenceSharingTheProductsFramesLooksTheSame) {
+    const std::string head = R"({ "version": 1, "stores": { "s": "cairns.gpkg" },
+        "terrain": { "store": "s", "tauGeom": 1, "tauTex": 1 },
+        "clock": { "start": "2026-03-14T00:00:00Z", "end": "2026-03-14T00:08:20Z", "paused": true },
+        "transferFunctions": { "d": { "units": "m", "stops": [ { "value": 0, "color": "#fee5d9" },
+                                                              { "value": 4, "color": "#a50f15" } ] } },
+        "layers": [ { "id": "flood", "kind": "sequence", "source": { "store": "s", "sequence": "flood" },
+                      "transfer": "d", "nodataAs": 0 })";
+    std::ofstream(sDir / "alone.json") << head << " ] }";
+    std::ofstream(sDir / "shared.json")
+        << head
+        << R"(, { "id": "max", "kind": "maximum", "source": { "store": "s", "sequence": "flood" },
+                     "transfer": "d", "nodataAs": 0, "operation": { "type": "opacity", "opacity": 0 } } ] })";
+    auto rt = makeTarget(kWidth, kHeight);
+    std::vector<std::uint8_t> alone[2], shared[2];
+    for (const char* name : {"alone.json", "shared.json"}) {
+        auto s = Session::open(sDir / name, mCaps);
+        ASSERT_TRUE(s.ok()) << s.diagnostics.format();
+        auto& out = std::string(name) == "alone.json" ? alone : shared;
+        out[0] = settled(**s, rt, 155.0);  // mid-pair: frames 15, 16 at alpha 0.5
+        out[1] = settled(**s, rt, 415.0);
+    }
+    EXPECT_GT(maxDiff(alone[0], alone[1]), 40) << "the two times look alike: proves nothing";
+    EXPECT_LE(maxDiff(alone[0], shared[0]), 1);
+    EXPECT_LE(maxDiff(alone[1], shared[1]), 1);
+}
+
 }  // namespace
 }  // namespace kiosk::app

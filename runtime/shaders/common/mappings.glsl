@@ -23,6 +23,24 @@ uniform int uMapListCount;
 uniform highp sampler2DArray uMapData;  // RGBA16F: images, or (LUT coord x valid, valid, 0, 0)
 uniform highp sampler2DArray uMapLut;   // RGBA8 rows: [below, LUT..., above]
 
+#ifdef KIOSK_MAP_INPUTS
+// Mappings of a layer of the stack (scenario "layer"): main() sets input k from that layer's
+// value at the fragment before applyMappings; a mapping whose data layer is -1 - k reads it
+// instead of uMapData. Stored as a data layer holds its values: (LUT coordinate x validity,
+// validity), the coordinate by render::MappingSet::addScalar's rule (domain -> entries
+// 1..1024 of the 1026-texel row, below -> 0, above -> 1025).
+vec2 gMapInput[KIOSK_MAP_INPUTS];
+
+vec2 mapInputOf(vec2 d, float present, vec2 domain) {
+    float ok = step(0.5, d.g) * step(0.5, present);
+    float v = d.r / max(d.g, 1e-6);
+    float range = domain.y - domain.x;
+    float e = 1.0 + (range > 0.0 ? (v - domain.x) / range : 0.0) * 1023.0;
+    e = v < domain.x ? 0.0 : (v > domain.y ? 1025.0 : e);  // below / above entries
+    return vec2((e + 0.5) / 1026.0 * ok, ok);
+}
+#endif
+
 // A blend factor from its coefficients (render::blendCoefficients): no branches, which matters
 // on llvmpipe where a per-mapping switch runs every case for every lane.
 vec3 mapFactor(vec4 k, vec4 src, vec3 dst) {
@@ -46,7 +64,10 @@ vec4 mapSource(int i, vec2 r) {
     vec4 param = uMap[12 * i + 9];
     vec3 q = mat3(uMap[12 * i + 2].xyz, uMap[12 * i + 3].xyz, uMap[12 * i + 4].xyz) * vec3(r, 1.0);
     vec2 s = q.xy / q.z;
-    vec4 d = texture(uMapData, vec3(s.x, 1.0 - s.y, param.x));
+    vec4 d = texture(uMapData, vec3(s.x, 1.0 - s.y, max(param.x, 0.0)));
+#ifdef KIOSK_MAP_INPUTS
+    if (param.x < -0.5) d = vec4(gMapInput[int(-0.5 - param.x)], 0.0, 0.0);
+#endif
     vec4 c = d;
     if (param.y >= 0.0) {
         float u = d.r / max(d.g, 1e-6);
