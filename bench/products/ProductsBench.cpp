@@ -1,7 +1,10 @@
 // Derived products benchmark (issue 19): the frame time of the ANUGA cairns replay with 0, 1 and
 // 3 product layers (maximum; + arrival and duration) over the same depth sequence layer, in the
 // same run, headless on llvmpipe. Prints ONE JSON object with each configuration's frame time
-// and the cost of one product as a fraction of the frame it is drawn in (goal < 0.15).
+// and the cost of one product as a fraction of the frame it is drawn in (goal < 0.15). The
+// product configurations run twice: with the depth layer reading its frames from the products'
+// texel (the default, docs/products.md) and with it sampling its own frame pair
+// (GEOKIOSK_PRODUCT_FRAME_SHARING=0), and the machine's load average is printed.
 //
 // The three sessions are prepared once (view resident, the pair and the products' states on the
 // GPU), then drawn in turn, frame after frame, while the data time sweeps through the run, so
@@ -9,7 +12,6 @@
 // computed on its thread, never on the frame).
 //
 // usage: bench-products CAIRNS.sww [--frames N] [--size WxH]
-#include "bench/common/HeadlessGl.h"
 #include "runtime/app/FrameStats.h"
 #include "runtime/app/Session.h"
 #include "runtime/core/Clock.h"
@@ -18,9 +20,11 @@
 #include "runtime/gl/RenderTarget.h"
 #include "runtime/import/Importer.h"
 
+#include "bench/common/HeadlessGl.h"
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -41,14 +45,18 @@ std::string layer(const std::string& id, const std::string& kind, const std::str
 std::string scenario(int products) {
     std::string layers = layer("flood", "sequence", R"("transfer": "depth")");
     if (products >= 1)
-        layers += ", " + layer("max", "maximum",
-                               R"("transfer": "depth", "operation": { "type": "opacity", "opacity": 0.5 })");
+        layers +=
+            ", " +
+            layer("max", "maximum",
+                  R"("transfer": "depth", "operation": { "type": "opacity", "opacity": 0.5 })");
     if (products >= 3) {
-        layers += ", " + layer("arr", "arrival",
-                               R"("transfer": "t", "operation": { "type": "opacity", "opacity": 0.5 },
+        layers +=
+            ", " + layer("arr", "arrival",
+                         R"("transfer": "t", "operation": { "type": "opacity", "opacity": 0.5 },
                                   "product": { "threshold": 0.1, "timeUnits": "min" })");
-        layers += ", " + layer("dur", "duration",
-                               R"("transfer": "t", "operation": { "type": "opacity", "opacity": 0.5 },
+        layers +=
+            ", " + layer("dur", "duration",
+                         R"("transfer": "t", "operation": { "type": "opacity", "opacity": 0.5 },
                                   "product": { "threshold": 0.5, "timeUnits": "min" })");
     }
     return R"({ "version": 1, "title": "ANUGA products", "stores": { "s": "anuga.gpkg" },
@@ -92,7 +100,8 @@ int main(int argc, char** argv) {
     auto headless = bench::openHeadlessGl();
     if (!headless) return 3;
     out["renderer"] = headless->caps.renderer;
-    const fs::path dir = fs::temp_directory_path() / ("kiosk-bench-products-" + std::to_string(::getpid()));
+    const fs::path dir =
+        fs::temp_directory_path() / ("kiosk-bench-products-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     import::ImportOptions o;
     o.store = dir / "anuga.gpkg";
@@ -107,12 +116,18 @@ int main(int argc, char** argv) {
         fs::remove_all(dir, ec);
         return 1;
     }
-    const int counts[3] = {0, 1, 3};
+    // 0, 1 and 3 products with the depth layer reading its frames from the products' texels
+    // (the default), then 1 and 3 with the depth layer sampling its own frame pair (sharing off).
+    const int counts[5] = {0, 1, 3, 1, 3};
+    const bool shared[5] = {true, true, true, false, false};
     std::vector<std::unique_ptr<app::Session>> sessions;
-    for (int n : counts) {
+    for (int k = 0; k < 5; ++k) {
+        const int n = counts[k];
         const fs::path file = dir / ("products" + std::to_string(n) + ".json");
         std::ofstream(file) << scenario(n);
+        if (!shared[k]) setenv("GEOKIOSK_PRODUCT_FRAME_SHARING", "0", 1);
         auto s = app::Session::open(file, headless->caps);
+        unsetenv("GEOKIOSK_PRODUCT_FRAME_SHARING");
         if (!s) {
             std::fprintf(stderr, "%s", s.diagnostics.format().c_str());
             fs::remove_all(dir, ec);
@@ -127,11 +142,11 @@ int main(int argc, char** argv) {
     const double t0 = sessions[0]->startTime(), span = sessions[0]->endTime() - t0;
     auto cameraOf = [&](app::Session& s) {
         auto vp = s.viewpointAt(t0, "");
-        return app::makeCamera(vp ? *vp : s.terrain().overviewViewpoint(), s.terrain().bounds(),
-                               w, h, s.scenario().camera.fovY);
+        return app::makeCamera(vp ? *vp : s.terrain().overviewViewpoint(), s.terrain().bounds(), w,
+                               h, s.scenario().camera.fovY);
     };
-    std::vector<std::vector<double>> ms(3);
-    std::vector<int> held(3, 0);
+    std::vector<std::vector<double>> ms(5);
+    std::vector<int> held(5, 0);
     // The data time sweeps the run once; every session draws each time (after its loader has
     // brought that step: the view is settled first, not timed, as a kiosk's prefetch would).
     for (int f = 0; f < frames; ++f) {
@@ -153,10 +168,11 @@ int main(int argc, char** argv) {
     const double base = app::percentile(ms[0], 50);
     out["size"] = std::to_string(w) + "x" + std::to_string(h);
     out["frames_per_configuration"] = frames;
-    for (std::size_t k = 0; k < 3; ++k) {
+    for (std::size_t k = 0; k < 5; ++k) {
         const double p50 = app::percentile(ms[k], 50);
         nlohmann::json r;
         r["product_layers"] = counts[k];
+        r["depth_layer_reads_product_texel"] = shared[k];
         r["frame_ms"] = {{"p50", p50}, {"p95", app::percentile(ms[k], 95)}};
         r["held_frames"] = held[k];
         if (counts[k] > 0) {
@@ -167,7 +183,11 @@ int main(int argc, char** argv) {
         }
         out["results"].push_back(r);
     }
-    out["baseline"] = "0 product layers: the depth sequence layer alone, same run, same view and times";
+    out["baseline"] =
+        "0 product layers: the depth sequence layer alone, same run, same view and times";
+    double loadavg[3] = {0, 0, 0};
+    if (getloadavg(loadavg, 3) == 3)
+        out["load_average_1_5_15"] = {loadavg[0], loadavg[1], loadavg[2]};
     sessions.clear();
     fs::remove_all(dir, ec);
     std::printf("%s\n", out.dump().c_str());

@@ -27,7 +27,7 @@ void Reader::product(const Obj& layer, Layer& l) {
         if (thresholded)
             mC.error(
                 "SCENARIO_MISSING", l.pointer,
-                std::string("an ") + layerKindName(kind) +
+                std::string(kind == LayerKind::Arrival ? "an " : "a ") + layerKindName(kind) +
                     " layer needs \"product\": {\"threshold\": ...} (in the sequence's units)");
         return;
     }

@@ -56,22 +56,41 @@ Diagnostics DerivedTiles::compute(int binding, const Derivation& d, io::StoreRea
         done = it->first;
     }
     const std::size_t floats = std::size_t(d.stateFloats());
-    // A frame read as the previous request's second frame is not read again.
+    // A frame read as the previous request's second frame is not read again. A frame whose tile
+    // the store does not hold (STORE_TILE_MISSING: nothing valid there yet, e.g. where a flood
+    // has not arrived) is all nodata: empty here, NaN of the tile's size once that is known.
     auto read = [&](int j) -> Result<std::vector<float>> {
         if (j == track.nextFrame) return track.next;
         Result<io::RasterTile> r = reader.readSequenceFrame(sequence, j, id);
-        if (!r.ok()) return r.diagnostics;
+        if (!r.ok()) {
+            if (r.diagnostics.has("STORE_TILE_MISSING")) return std::vector<float>{};
+            return r.diagnostics;
+        }
         track.postsX = r->postsX;
         track.postsY = r->postsY;
         return std::move(r->values);
     };
+    std::vector<int> absent;  // frames before the first the store holds for this tile
+    auto begin = [&](std::size_t posts) {
+        state.assign(posts * floats, 0.0f);
+        d.start(state);
+        const std::vector<float> none(posts, std::nanf(""));
+        for (int a : absent)
+            d.advance(state, none, seq->frameTimes[std::size_t(a)],
+                      a > 0 ? seq->frameTimes[std::size_t(a) - 1] : std::nan(""));
+        absent.clear();
+    };
     for (int j = done + 1; j <= frame; ++j) {
         Result<std::vector<float>> values = read(j);
         if (!values.ok()) return values.diagnostics;
-        if (state.empty()) {
-            state.assign(values->size() * floats, 0.0f);
-            d.start(state);
+        if (values->empty()) {
+            if (state.empty()) {
+                absent.push_back(j);
+                continue;
+            }
+            values->assign(state.size() / floats, std::nanf(""));
         }
+        if (state.empty()) begin(values->size());
         if (state.size() != values->size() * floats) {
             diags.error("LOADER_DERIVED_FRAME", reader.info().path, sequence,
                         "frame " + std::to_string(j) + " of tile " + std::to_string(id.level) +
@@ -84,12 +103,27 @@ Diagnostics DerivedTiles::compute(int binding, const Derivation& d, io::StoreRea
         if ((j + 1) % kCheckpointEvery == 0 && j < frame) keep(track, j, state);
     }
     std::vector<float> next;
+    bool nextAbsent = false;
     if (std::size_t(frame) + 1 < seq->frameTimes.size()) {
         Result<std::vector<float>> values = read(frame + 1);
         if (!values.ok()) return values.diagnostics;
         next = std::move(*values.value);
-        if (next.size() * floats != state.size()) next.clear();
+        nextAbsent = next.empty();
     }
+    if (state.empty()) {
+        // No frame up to k + 1 has data here: nothing to draw (the loader's Absent tile).
+        if (next.empty()) {
+            track.nextFrame = -1;
+            diags.error("STORE_TILE_MISSING", reader.info().path, sequence,
+                        "no frame up to " + std::to_string(frame + 1) + " holds tile " +
+                            std::to_string(id.level) + "/" + std::to_string(id.column) + "/" +
+                            std::to_string(id.row));
+            return diags;
+        }
+        begin(next.size());  // frames 0..k all nodata, k + 1 arrives on screen
+    }
+    if (nextAbsent) next.assign(state.size() / floats, std::nanf(""));
+    if (next.size() * floats != state.size()) next.clear();
     out.id = id;
     out.postsX = track.postsX;
     out.postsY = track.postsY;

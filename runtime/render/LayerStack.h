@@ -104,7 +104,7 @@ struct CompositeProgramDesc {
         int layer = -1;
         double domainMin = 0, domainMax = 1;
     };
-    std::vector<MappingInput> mappingInputs;
+    std::vector<MappingInput> mappingInputs{};
     /**
      * @brief false: the base colour is uBaseColor alone and uElevLutWeight is ignored, which
      * saves the elevation LUT fetch per pixel (llvmpipe samples it even at weight 0).

@@ -10,6 +10,7 @@
 #include "runtime/scene/TerrainScene.h"
 
 #include <algorithm>
+#include <cstdlib>
 
 namespace kiosk::scene {
 namespace {
@@ -78,6 +79,9 @@ void TerrainScene::buildLayerStack(std::vector<loader::LayerBinding>& bindings,
     // A sequence layer drawn with a product of the same frames reads the product's texel (it
     // holds the frame pair, docs/products.md): (stack index, product id).
     std::vector<std::pair<int, std::string>> framesFromProduct;
+    // Benchmark hook (bench-products measures both in one run): 0 turns the sharing off.
+    const char* sharing = std::getenv("GEOKIOSK_PRODUCT_FRAME_SHARING");
+    const bool share = !sharing || std::string(sharing) != "0";
     // Not a difference's operand nor a comparison side: those keep their own frames and steps.
     const auto stepsWithOthers = [&](const std::string& id) {
         const auto named = [&](const std::vector<std::string>& ids) {
@@ -156,7 +160,7 @@ void TerrainScene::buildLayerStack(std::vector<loader::LayerBinding>& bindings,
         }
         comp.shader = kind->shader(plan);
         if (plan.source == layers::SourceKind::Sequence &&
-            plan.interpolation == anim::Interpolation::Data && !stepsWithOthers(cl.id)) {
+            plan.interpolation == anim::Interpolation::Data && share && !stepsWithOthers(cl.id)) {
             for (const auto& other : mScenario->layers) {
                 if (&other == &cl || !layers::products::ProductSource::carriesFramesOf(
                                          other, cl, mScenario->terrain.store))
