@@ -69,6 +69,11 @@ public:
     void setArtificialDelay(double seconds) noexcept { mDelaySeconds = seconds; }
     /** @brief Bytes the running states of derived products may hold (set before start). */
     void setDerivedBudget(std::size_t bytes) noexcept { mDerived.setBudget(bytes); }
+    /**
+     * @brief Imagery tiles as the GPU blocks of `format` where the store holds them
+     * (kiosk_tile_textures; the PNG otherwise); None (default): always the PNG. Before start.
+     */
+    void setTextureFormat(io::TextureFormat format) noexcept { mTextureFormat = format; }
 
 private:
     void loadArrivalThresholds(const LayerBinding& layer, int frame, terrain::TilePayload& p);
@@ -89,6 +94,11 @@ private:
      * TIN: then a warning naming the tile is in `p`).
      */
     bool loadTin(const LayerBinding& layer, const TileId& id, int tier, terrain::TilePayload& p);
+    /**
+     * @brief The imagery tile's stored GPU blocks (true); false to read the PNG (none stored,
+     * or a damaged row: then a warning naming the tile is in `p`).
+     */
+    bool loadCompressed(const LayerBinding& layer, const TileId& id, terrain::TilePayload& p);
 
     std::vector<StoreOpener> mOpeners;
     std::vector<LayerBinding> mLayers;
@@ -102,6 +112,7 @@ private:
     terrain::TinMeshBuilder mTins;
     io::TileTinRow mTinRow;
     double mDelaySeconds = 0.0;
+    io::TextureFormat mTextureFormat = io::TextureFormat::None;
     DerivedTiles mDerived;  ///< running states of cumulative products, per tile
 };
 
