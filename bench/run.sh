@@ -29,6 +29,7 @@ fi
 "$BUILD/bench/bench-meshes" data/generated/rainier.gpkg $([[ -f $BUILD/bench-data/puget.gpkg ]] && echo $BUILD/bench-data/puget.gpkg)  # stored compressed meshes vs meshing on load
 "$BUILD/bench/bench-detail"                 # procedural detail: off / warped grid / regular grid
 "$BUILD/bench/bench-mappings"               # Table 1 of Trapp & Doellner: 0/1/4/16/27/64 mappings
+"$BUILD/bench/bench-compare"                # comparison lens vs the same scenario without it
 "$BUILD/bench/bench-import"                 # 4k DEM vs gdal_translate + gdaladdo (--sizes 4096,16384)
 "$BUILD/bench/hillshade/hillshade_bench"    # 4k DEM vs gdaldem hillshade (--with-16k)
 "$BUILD/bench/bench-replay" scenarios/demo/rainier.json --anuga "$ROOT/../shared/data/anuga_sww_flood_timeseries/cairns.sww"  # sequences at 1280x720/1920x1080 vs the fill bound

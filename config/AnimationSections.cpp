@@ -23,6 +23,26 @@ void Reader::clock(const json& j) {
     mS.clock = c;
 }
 
+std::vector<std::string> Reader::layerIds(const Obj& o, const std::string& key) {
+    // The meaning check (ComparisonChecks.cpp) resolves them, naming /.../key/k.
+    std::vector<std::string> ids;
+    const json* j = o.get(key);
+    if (!j) return ids;
+    if (!j->is_array()) {
+        mC.error("SCENARIO_TYPE", o.at(key), "expected an array of layer ids, got " + typeName(*j));
+        return ids;
+    }
+    for (std::size_t i = 0; i < j->size(); ++i) {
+        const json& e = (*j)[i];
+        if (!e.is_string() || e.get<std::string>().empty())
+            mC.error("SCENARIO_TYPE", childPointer(o.at(key), i),
+                     "expected a layer id (non-empty string), got " + typeName(e));
+        else
+            ids.push_back(e.get<std::string>());
+    }
+    return ids;
+}
+
 void Reader::lenses(const json& arr) {
     for (std::size_t i = 0; i < arr.size(); ++i) {
         const std::string ptr = childPointer("/lenses", i);
@@ -41,7 +61,12 @@ void Reader::lenses(const json& arr) {
             radii.reset();
         }
         l.shape = shape.value_or(o.has("radii") ? LensShape::Ellipse : LensShape::Circle);
-        if (o.has("radius") && o.has("radii"))
+        if (l.shape == LensShape::Swipe && (o.has("radius") || o.has("radii")))
+            mC.error("SCENARIO_CONFLICT", ptr,
+                     "a swipe lens is a line through \"center\": no \"radius\" or \"radii\"");
+        else if (l.shape == LensShape::Swipe) {
+            // The line needs only its point ("center") and direction ("rotation").
+        } else if (o.has("radius") && o.has("radii"))
             mC.error("SCENARIO_CONFLICT", ptr,
                      "give \"radius\" (circle) or \"radii\" (ellipse), not both");
         else if (l.shape == LensShape::Circle && !o.has("radius"))
@@ -54,8 +79,16 @@ void Reader::lenses(const json& arr) {
         assign(l.softEdge, o.num("softEdge", kNonNegative));
         assign(l.raise, o.num("raise", kUnit));
         assign(l.lower, o.num("lower", kUnit));
-        assign(l.inside, o.name("inside"));
-        assign(l.outside, o.name("outside"));
+        if (l.kind == LensKind::Comparison) {
+            l.insideStack = layerIds(o, "inside");
+            l.outsideStack = layerIds(o, "outside");
+            if (!o.has("inside"))
+                mC.error("SCENARIO_MISSING", ptr,
+                         "a comparison lens needs \"inside\" (the layer ids drawn inside it)");
+        } else {
+            assign(l.inside, o.name("inside"));
+            assign(l.outside, o.name("outside"));
+        }
         assign(l.enabled, o.boolean("enabled"));
         if (l.kind == LensKind::Visibility && l.inside.empty() && l.outside.empty() &&
             !o.has("inside") && !o.has("outside"))
@@ -71,6 +104,8 @@ void Reader::lenses(const json& arr) {
                 key.center = ko.numbers<2>("center");
                 if (auto r = ko.num("radius", kPositive)) key.radii = Vec2{*r, *r};
                 if (auto r = ko.numbers<2>("radii")) key.radii = r;
+                if (key.radii && l.shape == LensShape::Swipe)
+                    mC.error("SCENARIO_CONFLICT", ko.ptr(), "a swipe lens has no radius to key");
                 key.rotation = ko.num("rotation", Range{-360, 360});
                 l.keys.push_back(key);
             }

@@ -43,8 +43,26 @@ void Reader::layers(const json& arr) {
         }
         assign(l.interpolate, o.oneOf("interpolate", kInterpolations));
         if (auto v = o.num("nodataAs")) l.nodataAs = v;
+        l.operands = layerIds(o, "of");
+        if (kind && *kind == LayerKind::Difference) {
+            // A - B of two scalar layers of the stack: no source of its own.
+            if (o.has("source"))
+                mC.error("SCENARIO_CONFLICT", o.at("source"),
+                         "a difference layer has no \"source\": it subtracts the layers in \"of\"");
+            if (o.has("of") && l.operands.size() != 2)
+                mC.error("SCENARIO_BAD_VALUE", o.at("of"),
+                         "\"of\" wants two layer ids [A, B] (drawn as A - B)");
+            else if (!o.has("of"))
+                mC.error("SCENARIO_MISSING", ptr,
+                         "a difference layer needs \"of\": [A, B], two scalar layer ids");
+            if (l.transfer.empty() && !o.has("transfer"))
+                mC.error("SCENARIO_MISSING", ptr,
+                         "a difference layer needs \"transfer\" (a diverging transfer function)");
+        } else if (o.has("of")) {
+            mC.error("SCENARIO_CONFLICT", o.at("of"), "\"of\" applies to difference layers only");
+        }
         if (kind) product(o, l);
-        if (kind) {
+        if (kind && *kind != LayerKind::Difference) {
             const bool isSeq = *kind == LayerKind::Sequence || isProductKind(*kind);
             if (!isSeq && (o.has("interpolate") || o.has("nodataAs")))
                 mC.error("SCENARIO_CONFLICT", ptr,

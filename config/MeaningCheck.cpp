@@ -276,6 +276,7 @@ private:
     }
 
     void layer(const Layer& l) {
+        if (l.kind == LayerKind::Difference) return;  // no source: its operands are layers
         // (Mappings place their data by their own rectangle: any store will do for them.)
         if (const auto* info = store(l.source.store);
             info && !sharesTerrainGrid(l.pointer + "/source/store", l.source.store, *info))

@@ -19,7 +19,8 @@ inline const EnumTable<LayerKind> kLayerKinds = {{"thematic", LayerKind::Themati
                                                  {"maximum", LayerKind::Maximum},
                                                  {"arrival", LayerKind::Arrival},
                                                  {"duration", LayerKind::Duration},
-                                                 {"hazard", LayerKind::Hazard}};
+                                                 {"hazard", LayerKind::Hazard},
+                                                 {"difference", LayerKind::Difference}};
 inline const EnumTable<OperationType> kOperations = {
     {"opacity", OperationType::Opacity}, {"blend", OperationType::Blend},
     {"add", OperationType::Add},         {"modulate", OperationType::Modulate},
@@ -38,9 +39,10 @@ inline const EnumTable<RangeBehaviour> kRanges = {{"loop", RangeBehaviour::Loop}
                                                   {"clamp", RangeBehaviour::Clamp},
                                                   {"unbounded", RangeBehaviour::Unbounded}};
 inline const EnumTable<LensKind> kLensKinds = {{"highlight", LensKind::Highlight},
-                                               {"visibility", LensKind::Visibility}};
-inline const EnumTable<LensShape> kLensShapes = {{"circle", LensShape::Circle},
-                                                 {"ellipse", LensShape::Ellipse}};
+                                               {"visibility", LensKind::Visibility},
+                                               {"comparison", LensKind::Comparison}};
+inline const EnumTable<LensShape> kLensShapes = {
+    {"circle", LensShape::Circle}, {"ellipse", LensShape::Ellipse}, {"swipe", LensShape::Swipe}};
 inline const EnumTable<BlendFactor> kBlendFactors = {
     {"zero", BlendFactor::Zero},         {"one", BlendFactor::One},
     {"srcColor", BlendFactor::SrcColor}, {"oneMinusSrcColor", BlendFactor::OneMinusSrcColor},

@@ -18,7 +18,7 @@ const std::map<std::string, std::vector<std::string>>& propertyTable() {
           "cacheBytes", "gpuBytes", "proceduralDetail", "occlusionCulling"}},
         {"Layer",
          {"id", "kind", "source", "transfer", "operation", "enabled", "interpolate", "nodataAs",
-          "product"}},
+          "product", "of"}},
         {"Product", {"threshold", "units", "timeUnits", "velocity", "isochrones"}},
         {"Source", {"store", "layer", "sequence"}},
         {"Operation", {"type", "weight", "opacity", "visibility"}},

@@ -76,6 +76,7 @@ enum class LayerKind {
     Arrival,
     Duration,
     Hazard,
+    Difference,  ///< A - B of two scalar layers of the stack (layers/difference/)
 };
 /** @brief The kinds computed from a sequence's stored steps while replaying. */
 inline bool isProductKind(LayerKind k) noexcept {
@@ -128,6 +129,8 @@ struct Layer {
     bool enabled = true;
     SequenceInterpolation interpolate = SequenceInterpolation::Data;  ///< sequence only
     std::optional<double> nodataAs;  ///< sequence: nodata counts as this value when blending
+    /** @brief difference: the ids of the layers A and B (value = A - B), JSON "of". */
+    std::vector<std::string> operands;
     ProductOptions product;          ///< product kinds (isProductKind) only
     std::string pointer;             ///< e.g. "/layers/2"
 };
@@ -156,8 +159,10 @@ struct Clock {
     std::string pointer = "/clock";
 };
 
-enum class LensKind { Highlight, Visibility };
-enum class LensShape { Circle, Ellipse };
+/** @brief Comparison: another layer stack (run B, forecast, a difference) inside the lens. */
+enum class LensKind { Highlight, Visibility, Comparison };
+/** @brief Swipe: a straight line through `center`; the inside is the side `rotation` points to. */
+enum class LensShape { Circle, Ellipse, Swipe };
 
 /** @brief Lens parameters at a time; absent fields keep the lens's base value. */
 struct LensKey {
@@ -180,6 +185,8 @@ struct Lens {
     double lower = 0.25;  ///< highlight: luminance removed outside
     std::string inside;   ///< visibility: layer shown inside
     std::string outside;  ///< visibility: layer shown outside
+    /** @brief comparison: the layers drawn only inside (B's stack) and only outside (A's). */
+    std::vector<std::string> insideStack, outsideStack;
     bool enabled = true;
     std::vector<LensKey> keys;  ///< sorted by time as written
     std::string pointer;

@@ -73,6 +73,7 @@ void Reader::crossReferences() {
         if (!lens.outside.empty())
             reference(lens.pointer + "/outside", "layer", lens.outside, layerIds);
     }
+    comparisonReferences(layerIds);
     seen.clear();
     for (const auto& m : mS.projectiveMappings) {
         if (!m.id.empty() && !seen.insert(m.id).second)

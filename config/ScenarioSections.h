@@ -34,6 +34,8 @@ private:
     bool fileExists(const std::filesystem::path& file, const std::string& ptr);
     void clock(const json& j);
     void lenses(const json& arr);
+    /** @brief `key` as an array of layer ids (comparison sides, difference "of"). */
+    std::vector<std::string> layerIds(const Obj& o, const std::string& key);
     void mappings(const json& arr);
     MappingRoute route(const json& j, const std::string& ptr);
     std::optional<Viewpoint> viewpoint(const Obj& o, bool targetRequired);
@@ -62,6 +64,8 @@ private:
         return out;
     }
     void crossReferences();
+    /** @brief Difference operands and comparison-lens sides (ComparisonChecks.cpp). */
+    void comparisonReferences(const std::vector<std::string>& layerIds);
     // The path rule of config/PathPolicy.h; the file's name is quoted only as given.
     bool contained(const std::filesystem::path& file, const std::string& ptr);
 

@@ -35,6 +35,20 @@ public:
      * layer's LUT index, or -1 when it has none (the layer then stays transparent).
      */
     virtual void sample(std::ostream& s, int i, int lut) const = 0;
+    /**
+     * @brief Layers of the stack this one is computed from (a difference: 2); the compositor
+     * samples them first and calls sampleFrom() with their indices instead of sample().
+     */
+    virtual int operands() const { return 0; }
+    /**
+     * @brief sample() for a kind with operands: `operand[k]` is the stack index of operand k,
+     * whose statements (e.g. `vec2 d<j>` of scalar kinds) are already emitted; -1 when that
+     * layer is not in the stack (failed or disabled): the kind then draws nothing.
+     */
+    virtual void sampleFrom(std::ostream& s, int i, int lut, const int* operand) const {
+        (void)operand;
+        sample(s, i, lut);
+    }
     /** @brief Only a mask for other layers' Blend: with operation Over it draws nothing. */
     virtual bool maskOnly() const { return false; }
     /**

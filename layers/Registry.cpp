@@ -2,6 +2,7 @@
 
 #include "layers/arrival/Arrival.h"
 #include "layers/data/Data.h"
+#include "layers/difference/Difference.h"
 #include "layers/duration/Duration.h"
 #include "layers/hazard/Hazard.h"
 #include "layers/luminance/Luminance.h"
@@ -39,6 +40,7 @@ Registry& registry() {
         k.add("arrival", std::make_unique<ArrivalKind>());
         k.add("duration", std::make_unique<DurationKind>());
         k.add("hazard", std::make_unique<HazardKind>());
+        k.add("difference", std::make_unique<DifferenceKind>());
         return k;
     }();
     return r;

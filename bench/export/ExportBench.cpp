@@ -8,9 +8,11 @@
 // machine) and its CPU time per frame (all threads): on 2 cores llvmpipe already keeps both
 // busy, so the encoder's CPU time is what the export costs. The load average is reported with
 // the figures, since other processes on the machine move every wall-time figure.
+// For .mp4 the pass `previous` exports the same frames with the previous default (libx264
+// preset veryfast, CRF 15): the baseline of the preset change, same run.
 //
 // usage: bench-export [SCENARIO] [--size 1920x1080] [--frames N] [--fps 30]
-//                     [--format mp4|mkv|webm] [--rounds R] [--passes render,png,video]
+//                     [--format mp4|mkv|webm] [--rounds R] [--passes render,png,video,previous]
 // (--passes may also name rgba: drawing plus the RGBA readback, writing nothing: what the
 // readback alone costs.)
 #include "runtime/anim/ScenarioClock.h"
@@ -39,7 +41,7 @@ using namespace kiosk;
 
 namespace {
 
-enum class Output { None, Rgba, Png, Video };
+enum class Output { None, Rgba, Png, Video, VideoPrevious };
 
 struct PassTime {
     double wall = 0;   ///< seconds for all frames, output included (the video's finish() too)
@@ -50,8 +52,14 @@ PassTime pass(app::Session& s, gl::RenderTarget& rt, const std::vector<double>& 
               const std::filesystem::path& out, const video::VideoOptions& vo) {
     std::optional<app::FrameOutput> output;
     if (kind == Output::Png) output.emplace(app::FrameOutput::folder(out));
-    if (kind == Output::Video) {
-        auto v = app::FrameOutput::video(vo);
+    if (kind == Output::Video || kind == Output::VideoPrevious) {
+        video::VideoOptions o = vo;
+        if (kind == Output::VideoPrevious) {
+            o.path.replace_filename("previous" + o.path.extension().string());
+            o.preset = "veryfast";
+            o.crf = 15;
+        }
+        auto v = app::FrameOutput::video(o);
         if (!v) {
             std::fprintf(stderr, "%s\n", v.diagnostics.format().c_str());
             std::exit(1);
@@ -106,7 +114,7 @@ double loadAverage() {
 
 int main(int argc, char** argv) {
     std::string scenario = "scenarios/demo/rainier.json", format = "mp4",
-                passes = "render,png,video";
+                passes = "render,png,video,previous";
     int width = 1920, height = 1080, frames = 60, rounds = 2;
     double fps = 30;
     for (int i = 1; i < argc; ++i) {
@@ -132,7 +140,8 @@ int main(int argc, char** argv) {
         } else {
             std::fprintf(stderr,
                          "usage: bench-export [SCENARIO] [--size WxH] [--frames N] [--fps F] "
-                         "[--format mp4|mkv|webm] [--rounds R] [--passes render,png,video]\n");
+                         "[--format mp4|mkv|webm] [--rounds R] "
+                         "[--passes render,png,video,previous]\n");
             return 2;
         }
     }
@@ -173,17 +182,21 @@ int main(int argc, char** argv) {
         {"render", "render_only", Output::None},
         {"rgba", "readback_rgba", Output::Rgba},
         {"png", "render_png", Output::Png},
-        {"video", "export", Output::Video}};
+        {"video", "export", Output::Video},
+        {"previous", "export_previous", Output::VideoPrevious}};
     std::map<std::string, PassTime> best;
-    std::uintmax_t bytes = 0;
+    std::uintmax_t bytes = 0, previousBytes = 0;
     for (int r = 0; r < rounds; ++r)
         for (const auto& [word, name, kind] : kinds) {
             if (("," + passes + ",").find(std::string(",") + word + ",") == std::string::npos)
                 continue;
+            if (kind == Output::VideoPrevious && vo.format != video::VideoFormat::H264Mp4) continue;
             const PassTime p = pass(s, *rt, times, kind, dir / "png", vo);
             auto it = best.find(name);
             if (it == best.end() || p.wall < it->second.wall) best[name] = p;
             if (kind == Output::Video) bytes = std::filesystem::file_size(vo.path);
+            if (kind == Output::VideoPrevious)
+                previousBytes = std::filesystem::file_size(dir / "previous.mp4");
         }
     const double loadAfter = loadAverage();
     std::error_code ec;
@@ -199,6 +212,7 @@ int main(int argc, char** argv) {
     j["fps_playback"] = fps;
     j["format"] = video::videoFormatName(vo.format);
     j["crf"] = video::defaultCrf(vo.format);
+    if (vo.format == video::VideoFormat::H264Mp4) j["preset"] = video::defaultPreset();
     for (const auto& [name, p] : best) {
         j["frame_ms"][name] = p.wall / n * 1000;
         j["cpu_ms_per_frame"][name] = p.cpuMs / n;
@@ -209,11 +223,15 @@ int main(int argc, char** argv) {
         const double render = best["render_only"].wall;
         if (best.count("export"))
             j["export_overhead_pct"] = (best["export"].wall - render) / render * 100.0;
+        if (best.count("export_previous"))
+            j["export_previous_overhead_pct"] =
+                (best["export_previous"].wall - render) / render * 100.0;
         if (best.count("render_png"))
             j["png_overhead_pct"] = (best["render_png"].wall - render) / render * 100.0;
     }
     j["goal_overhead_pct"] = 10.0;
     if (bytes) j["video_bytes"] = bytes;
+    if (previousBytes) j["video_bytes_previous"] = previousBytes;
     j["hardware_threads"] = std::thread::hardware_concurrency();
     j["load_average"] = {loadBefore, loadAfter};
     std::printf("%s\n", j.dump().c_str());

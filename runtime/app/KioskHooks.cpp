@@ -112,6 +112,9 @@ KioskHooks::Requests KioskHooks::applyControl(anim::ScenarioClock& clock) {
             case service::ControlAction::Reload:
                 r.reload = true;
                 break;
+            case service::ControlAction::Lens:
+                r.lens.push_back(c.lens);
+                break;
         }
     }
     return r;

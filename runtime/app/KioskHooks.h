@@ -62,9 +62,10 @@ public:
 
     /** @brief What the frame loop must do besides the clock changes already applied. */
     struct Requests {
-        bool reload = false;   ///< re-open the scenario now
-        int playlistStep = 0;  ///< +1 next entry, -1 previous
-        bool clock = false;    ///< pause/play/seek/rate acted on the clock
+        bool reload = false;                  ///< re-open the scenario now
+        int playlistStep = 0;                 ///< +1 next entry, -1 previous
+        bool clock = false;                   ///< pause/play/seek/rate acted on the clock
+        std::vector<service::LensMove> lens;  ///< lens moves, in order (app/LensControl.h)
     };
     /** @brief Take the queued control commands; pause/play/seek/rate act on `clock` here. */
     Requests applyControl(anim::ScenarioClock& clock);

@@ -71,7 +71,9 @@ MemoryNeeds memoryNeeds(const config::Scenario& sc) {
     MemoryNeeds n;
     std::set<std::string> layerTransfers;
     for (const auto& l : sc.layers) {
-        if (l.kind != config::LayerKind::Data && l.kind != config::LayerKind::Sequence) continue;
+        if (l.kind != config::LayerKind::Data && l.kind != config::LayerKind::Sequence &&
+            l.kind != config::LayerKind::Difference)
+            continue;
         ++n.luts;
         n.lutBytes += kLayerLutBytes;
         layerTransfers.insert(l.transfer);

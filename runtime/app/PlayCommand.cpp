@@ -6,6 +6,7 @@
 #include "runtime/app/Args.h"
 #include "runtime/app/BriefingControl.h"
 #include "runtime/app/KioskHooks.h"
+#include "runtime/app/LensControl.h"
 #include "runtime/app/Report.h"
 #include "runtime/app/ScenarioReloader.h"
 #include "runtime/app/Session.h"
@@ -249,6 +250,9 @@ int runPlayCommand(const std::vector<std::string>& argv) {
         // Remote control (pause/play/seek/rate act on the clock; reload: the worker re-reads).
         const KioskHooks::Requests control = kiosk->applyControl(clock);
         if (control.reload) reloader.requestLoad();
+        for (const auto& move : control.lens)  // POST /control/lens (docs/kiosk.md)
+            if (std::string why; !applyLensMove(session->terrain(), move, why))
+                KIOSK_LOG_WARN(kTag, "control: lens: %s", why.c_str());
         // A remote pause/play/seek/rate means the operator drives the clock: the briefing's
         // chapters would otherwise keep choosing the time and the command would have no effect.
         if (control.clock) briefing.reset();
@@ -325,6 +329,7 @@ int runPlayCommand(const std::vector<std::string>& argv) {
                 vp = *manual;
             }
         }
+        applyLensKeys(session->terrain(), input);
         input.clearRequests();
         // What the clock plays (a briefing: its chapter's span): sizes the sequences' prefetch.
         scene::Playback playback = scene::playbackOf(clock);

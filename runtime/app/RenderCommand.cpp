@@ -1,17 +1,11 @@
 #include "runtime/app/RenderCommand.h"
 
-#include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <thread>
-
 #include "runtime/anim/BriefingTimeline.h"
 #include "runtime/anim/ScenarioClock.h"
 #include "runtime/app/Args.h"
-#include "runtime/app/Report.h"
-#include "runtime/app/FrameStats.h"
 #include "runtime/app/FrameOutput.h"
+#include "runtime/app/FrameStats.h"
+#include "runtime/app/Report.h"
 #include "runtime/app/Session.h"
 #include "runtime/app/WallScreen.h"
 #include "runtime/core/Clock.h"
@@ -23,6 +17,12 @@
 #include "runtime/gl/Context.h"
 #include "runtime/gl/RenderTarget.h"
 #include "runtime/platform/Display.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <thread>
 
 namespace kiosk::app {
 namespace {
@@ -36,7 +36,7 @@ constexpr double kSettleTimeoutSeconds = 120.0;
 constexpr const char* kUsage =
     "usage: geokiosk render SCENARIO --out OUT [--time T | "
     "--from T0 --to T1 --fps N] [--size WxH] [--viewpoint NAME] "
-    "[--stats STATS.json] [--reference lod|full] [--crf N] [--quiet] "
+    "[--stats STATS.json] [--reference lod|full] [--crf N] [--preset P] [--quiet] "
     "[--occlusion-culling on|off] [--wall WALL.json --screen ID]\n"
     "  OUT: x.png | dir/ | x.mp4 (H.264) | x.mkv (FFV1 lossless) | "
     "x.webm (VP9)\n";
@@ -51,7 +51,7 @@ int usage(const std::string& message) {
 int runRenderCommand(const std::vector<std::string>& argv) {
     Args args("render",
               {"out", "time", "from", "to", "fps", "size", "viewpoint", "stats", "reference", "crf",
-               "wall", "screen", "occlusion-culling"},
+               "preset", "wall", "screen", "occlusion-culling"},
               {"quiet"});
     if (!args.parse(argv)) return usage(args.error());
     if (args.help()) return showHelp(kUsage);
@@ -82,6 +82,18 @@ int runRenderCommand(const std::vector<std::string>& argv) {
                          ", got '" + *c + "'");
         crf = int(v);
     }
+    std::string preset;
+    if (auto p = args.value("preset")) {
+        const auto format = video::videoFormatForPath(*out);
+        if (!format || *format != video::VideoFormat::H264Mp4)
+            return usage("--preset applies to .mp4 (libx264)");
+        if (!video::isX264Preset(*p))
+            return usage(
+                "--preset wants one of ultrafast, superfast, veryfast, faster, fast, "
+                "medium, slow, slower, veryslow, got '" +
+                *p + "'");
+        preset = *p;
+    }
     int width = 1280, height = 720;
     if (auto size = args.value("size")) {
         auto wh = parseSize(*size);
@@ -109,14 +121,17 @@ int runRenderCommand(const std::vector<std::string>& argv) {
     if (auto f = args.value("fps")) {
         char* end = nullptr;
         fps = std::strtod(f->c_str(), &end);
-        if (end == f->c_str() || *end || !(fps > 0) || fps > 1000) return usage("--fps wants a positive number");
+        if (end == f->c_str() || *end || !(fps > 0) || fps > 1000)
+            return usage("--fps wants a positive number");
     }
     std::optional<TimeSpec> at, from, to;
-    for (auto [name, slot] : {std::pair{"time", &at}, std::pair{"from", &from}, std::pair{"to", &to}}) {
+    for (auto [name, slot] :
+         {std::pair{"time", &at}, std::pair{"from", &from}, std::pair{"to", &to}}) {
         if (auto v = args.value(name)) {
             *slot = parseTimeSpec(*v);
             if (!*slot)
-                return usage("--" + std::string(name) + " wants an ISO 8601 UTC time or +offset, got '" + *v + "'");
+                return usage("--" + std::string(name) +
+                             " wants an ISO 8601 UTC time or +offset, got '" + *v + "'");
         }
     }
     const auto reference = args.value("reference");
@@ -177,7 +192,8 @@ int runRenderCommand(const std::vector<std::string>& argv) {
                                 ? std::fabs(s.scenario().clock->rate)
                                 : 1.0;
         const std::int64_t n = anim::frameCount(t0, t1, fps, rate);
-        for (std::int64_t i = 0; i < n; ++i) times.push_back(anim::timeForFrame(t0, t1, fps, i, rate));
+        for (std::int64_t i = 0; i < n; ++i)
+            times.push_back(anim::timeForFrame(t0, t1, fps, i, rate));
         // Frames ahead of the playhead load while the current one is waited for and drawn.
         scene::Playback playback;
         playback.rate = rate;  // data seconds per playback second
@@ -201,6 +217,7 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         vo.height = height;
         vo.fps = fps;
         vo.crf = crf;
+        vo.preset = preset;
         for (std::size_t c = 0; c < chapterFrames.size(); ++c)
             vo.chapters.push_back({s.scenario().briefing->chapters[c].title,
                                    double(chapterFrames[c].first) / fps,
@@ -250,8 +267,9 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         const double waitStart = clock.now();
         for (s.prepare(cam, times[i]); !s.terrain().settled(); s.prepare(cam, times[i])) {
             if (clock.now() - waitStart > kSettleTimeoutSeconds) {
-                KIOSK_LOG_WARN(kTag, "frame %zu: tiles still missing after %.0f s; drawing what is resident",
-                               i + 1, kSettleTimeoutSeconds);
+                KIOSK_LOG_WARN(
+                    kTag, "frame %zu: tiles still missing after %.0f s; drawing what is resident",
+                    i + 1, kSettleTimeoutSeconds);
                 break;
             }
             std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -282,8 +300,8 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         }
     }
     if (!args.flag("quiet"))
-        std::fprintf(stderr, "render: wrote %zu frame%s to %s\n", times.size(), times.size() == 1 ? "" : "s",
-                 out->c_str());
+        std::fprintf(stderr, "render: wrote %zu frame%s to %s\n", times.size(),
+                     times.size() == 1 ? "" : "s", out->c_str());
     for (const auto& st : s.terrain().layerStatus())
         if (st.state != scene::LayerState::Ready)
             std::fprintf(stderr, "render: layer %s %s: %s\n", st.id.c_str(),

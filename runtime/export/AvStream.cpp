@@ -104,9 +104,10 @@ bool AvStream::open(const VideoOptions& options, Diagnostics& diags) {
         const std::string crf = std::to_string(options.crf.value_or(defaultCrf(options.format)));
         av_opt_set(mCodec->priv_data, "crf", crf.c_str(), 0);
         if (options.format == VideoFormat::H264Mp4) {
-            // "veryfast" keeps encoding well under the frame time of a software-rendered frame;
-            // the CRF, not the preset, sets the quality.
-            av_opt_set(mCodec->priv_data, "preset", "veryfast", 0);
+            // The preset trades encoding time for file size (defaultPreset() says why ultrafast);
+            // the CRF sets the quality.
+            const std::string preset = options.preset.empty() ? defaultPreset() : options.preset;
+            av_opt_set(mCodec->priv_data, "preset", preset.c_str(), 0);
         } else {
             mCodec->bit_rate = 0;  // constant quality: CRF without a bitrate cap
             av_opt_set(mCodec->priv_data, "deadline", "good", 0);

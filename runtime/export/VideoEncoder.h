@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 // Video export through FFmpeg's libraries (libavcodec, libavformat, libavutil). No GL here: the
@@ -40,6 +41,8 @@ struct VideoOptions {
     /** @brief Constant rate factor; nullopt: the format's default (H.264 18, VP9 31). Ignored by
      * FFV1. */
     std::optional<int> crf;
+    /** @brief libx264 preset (H.264 only); empty: defaultPreset(). */
+    std::string preset;
     std::vector<VideoChapter> chapters;
     /** @brief Frames that may wait for the encoder thread before acquire() blocks. */
     int queueFrames = 4;
@@ -47,6 +50,10 @@ struct VideoOptions {
 
 /** @brief Default CRF of a lossy format (what `--crf` overrides). */
 int defaultCrf(VideoFormat f) noexcept;
+/** @brief The libx264 preset used when `--preset` is not given. */
+const char* defaultPreset() noexcept;
+/** @brief Whether @p name is one of libx264's presets (ultrafast .. placebo). */
+bool isX264Preset(std::string_view name) noexcept;
 /** @brief Valid `--crf` range of a lossy format (libx264 0..51, libvpx-vp9 0..63). */
 int maxCrf(VideoFormat f) noexcept;
 

@@ -200,14 +200,14 @@ void StoreTileLoader::threadStopping() {
 }
 
 TilePayload StoreTileLoader::load(const LoadRequest& request) {
-    if (mDelaySeconds > 0)
-        std::this_thread::sleep_for(std::chrono::duration<double>(mDelaySeconds));
     TilePayload p;
     p.key = request.key;
     // The store holding the request's layer (an unknown layer is reported by the first store).
     const std::size_t store = request.key.layer < mLayers.size()
                                   ? std::size_t(std::max(0, mLayers[request.key.layer].store))
                                   : 0;
+    if (mDelaySeconds > 0 && (mDelayStore < 0 || std::size_t(mDelayStore) == store))
+        std::this_thread::sleep_for(std::chrono::duration<double>(mDelaySeconds));
     mReader = store < mReaders.size() ? mReaders[store].get() : nullptr;
     if (!mReader) {
         p.status = TilePayload::Status::Failed;

@@ -65,8 +65,14 @@ public:
     void threadStarted() override;
     terrain::TilePayload load(const LoadRequest& request) override;
     void threadStopping() override;
-    /** @brief Test hook: every load() first sleeps this long (a slow disk or network share). */
-    void setArtificialDelay(double seconds) noexcept { mDelaySeconds = seconds; }
+    /**
+     * @brief Test hook: every load() first sleeps this long (a slow disk or network share); with
+     * `store` >= 0 only the loads from that store (index into the openers) do.
+     */
+    void setArtificialDelay(double seconds, int store = -1) noexcept {
+        mDelaySeconds = seconds;
+        mDelayStore = store;
+    }
     /** @brief Bytes the running states of derived products may hold (set before start). */
     void setDerivedBudget(std::size_t bytes) noexcept { mDerived.setBudget(bytes); }
 
@@ -102,6 +108,7 @@ private:
     terrain::TinMeshBuilder mTins;
     io::TileTinRow mTinRow;
     double mDelaySeconds = 0.0;
+    int mDelayStore = -1;  ///< -1: every store is slow
     DerivedTiles mDerived;  ///< running states of cumulative products, per tile
 };
 

@@ -41,7 +41,16 @@ struct InputState {
     int step = 0;       ///< . / , : next / previous key frame
     bool togglePause = false;  ///< space
     bool home = false;         ///< h / Home: back to the scenario's camera
-    void clearRequests() { orbit = tilt = zoom = step = 0, togglePause = home = false; }
+    // The comparison lens (app/LensControl.h): w/a/s/d move, [ / ] size, r turns, c toggles.
+    int lensX = 0;     ///< d: +1 (east), a: -1
+    int lensY = 0;     ///< w: +1 (north), s: -1
+    int lensSize = 0;  ///< ]: +1 larger, [: -1 smaller
+    int lensTurn = 0;  ///< r: +1 (15 degrees counter-clockwise)
+    bool lensToggle = false;  ///< c
+    void clearRequests() {
+        orbit = tilt = zoom = step = lensX = lensY = lensSize = lensTurn = 0;
+        togglePause = home = lensToggle = false;
+    }
 };
 
 /**

@@ -299,6 +299,14 @@ void X11Display::pollInput(InputState& state) {
                     case XK_space: state.togglePause = !state.togglePause; break;
                     case XK_h:
                     case XK_Home: state.home = true; break;
+                    case XK_w: ++state.lensY; break;
+                    case XK_s: --state.lensY; break;
+                    case XK_d: ++state.lensX; break;
+                    case XK_a: --state.lensX; break;
+                    case XK_bracketright: ++state.lensSize; break;
+                    case XK_bracketleft: --state.lensSize; break;
+                    case XK_r: ++state.lensTurn; break;
+                    case XK_c: state.lensToggle = !state.lensToggle; break;
                     default: break;
                 }
                 break;

@@ -4,6 +4,7 @@
 #include "runtime/gl/ShaderLibrary.h"
 #include "runtime/render/ProceduralDetailGlsl.h"
 
+#include <algorithm>
 #include <set>
 #include <sstream>
 
@@ -43,6 +44,18 @@ float lensMask(vec4 lens, vec2 rotation, float softEdge, vec2 p) {
     return 1.0 - smoothstep(1.0 - edge, 1.0, r);
 }
 )";
+
+// Swipe lens: the half-plane the unit `normal` points into, blended over `softEdge` metres.
+constexpr const char* kSwipeMask =
+    R"(float swipeMask(vec4 lens, vec2 normal, float softEdge, vec2 p) {
+    float e = 0.5 * max(softEdge, 1e-6);
+    return smoothstep(-e, e, dot(p - lens.xy, normal));
+}
+)";
+
+bool contains(const std::vector<int>& v, int i) {
+    return std::find(v.begin(), v.end(), i) != v.end();
+}
 
 const char* builtinKindName(LayerKind k) {
     // Names only (the kinds are in layers/): descriptions built without a scene use them.
@@ -98,6 +111,19 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
                         "blend needs another layer of the stack as its visibility source");
         }
     }
+    for (int i = 0; i < n; ++i) {
+        const auto& l = desc.layers[std::size_t(i)];
+        const int want = shaderOf(l)->operands();
+        bool ok = int(l.operands.size()) == want;
+        // -1: an operand that is not in the stack (the layer then draws nothing).
+        for (int o : l.operands)
+            ok = ok && o >= -1 && o < n && o != i &&
+                 (o < 0 || shaderOf(desc.layers[std::size_t(o)])->operands() == 0);
+        if (!ok)
+            diags.error("RENDER_BAD_OPERANDS", "", "layer " + std::to_string(i),
+                        "needs " + std::to_string(want) +
+                            " other layers of the stack (not computed ones) as its operands");
+    }
     if (diags.hasErrors()) return diags;
 
     // Shared helpers come from the shader library so the GLSL and its C++ mirror
@@ -122,6 +148,9 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
     std::set<const char*> helpersDone;
     for (const auto& piece : pieces)
         if (const char* h = piece->helpers(); h && helpersDone.insert(h).second) s << h;
+    if (std::any_of(desc.lenses.begin(), desc.lenses.end(),
+                    [](const CompositeLens& l) { return l.shape == LensShape::Swipe; }))
+        s << kSwipeMask;
     if (desc.mappingCapacity > 0) {
         auto text = gl::ShaderLibrary::source("common/mappings.glsl");
         if (!text) return text.diagnostics;
@@ -156,12 +185,17 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
          << "    vec3 background = C;\n";
     // Lens masks first: visibility lenses gate whole layers.
     for (std::size_t j = 0; j < desc.lenses.size(); ++j)
-        s << "    float lens" << j << " = uLensParam" << j << ".w * lensMask(uLens" << j
+        s << "    float lens" << j << " = uLensParam" << j << ".w * "
+          << (desc.lenses[j].shape == LensShape::Swipe ? "swipeMask" : "lensMask") << "(uLens" << j
           << ", uLensRot" << j << ", uLensParam" << j << ".x, vScenePos);\n";
     // Every layer's sample is computed up front so Blend can reference any visibility layer.
     // (Procedural detail samples data layers first: the shading normal depends on them.)
-    const std::vector<int> order = ProceduralDetailGlsl::sampleOrder(desc);
+    std::vector<int> order = ProceduralDetailGlsl::sampleOrder(desc);
     const std::size_t dataFirst = ProceduralDetailGlsl::dataLayerCount(desc);
+    // Layers computed from others (a difference) come after them, within the same part.
+    const auto plain = [&](int i) { return pieces[std::size_t(i)]->operands() == 0; };
+    std::stable_partition(order.begin(), order.begin() + std::ptrdiff_t(dataFirst), plain);
+    std::stable_partition(order.begin() + std::ptrdiff_t(dataFirst), order.end(), plain);
     for (std::size_t o = 0; o < order.size(); ++o) {
         if ((desc.proceduralDetail || desc.detailHole) && o == dataFirst)
             s << ProceduralDetailGlsl::afterDataSamples(desc);
@@ -170,7 +204,12 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
           << ".zw;\n";
         // The kind defines L<i>; a LUT index past lutCount leaves the layer transparent.
         const int k = lutIndexOf(desc, i);
-        pieces[std::size_t(i)]->sample(s, i, k < desc.lutCount ? k : -1);
+        const auto& piece = *pieces[std::size_t(i)];
+        if (piece.operands() > 0)
+            piece.sampleFrom(s, i, k < desc.lutCount ? k : -1,
+                             desc.layers[std::size_t(i)].operands.data());
+        else
+            piece.sample(s, i, k < desc.lutCount ? k : -1);
     }
     if ((desc.proceduralDetail || desc.detailHole) && dataFirst == order.size())
         s << ProceduralDetailGlsl::afterDataSamples(desc);
@@ -180,6 +219,11 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
         s << "    {\n        float w = uLayerParam" << i << ".x * uLayerParam" << i << ".w;\n";
         for (std::size_t j = 0; j < desc.lenses.size(); ++j) {
             const auto& lens = desc.lenses[j];
+            if (lens.kind == LensKind::Comparison) {
+                // Two stacks, one on each side of the lens at the same data time.
+                if (contains(lens.insideLayers, i)) s << "        w *= lens" << j << ";\n";
+                if (contains(lens.outsideLayers, i)) s << "        w *= 1.0 - lens" << j << ";\n";
+            }
             if (lens.kind != LensKind::Visibility) continue;
             if (lens.insideLayer == i) s << "        w *= lens" << j << ";\n";
             if (lens.outsideLayer == i) s << "        w *= 1.0 - lens" << j << ";\n";
@@ -190,8 +234,8 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
                 s << "        C = mix(C, " << L << ".rgb, clamp(" << L << ".a * w, 0.0, 1.0));\n";
                 break;
             case LayerOp::Blend:
-                s << "        C = mix(C, " << L << ".rgb, clamp(L" << l.visibilityLayer
-                  << ".a * " << L << ".a * w, 0.0, 1.0));\n";
+                s << "        C = mix(C, " << L << ".rgb, clamp(L" << l.visibilityLayer << ".a * "
+                  << L << ".a * w, 0.0, 1.0));\n";
                 break;
             case LayerOp::Add:
                 s << "        C = C + " << L << ".rgb * " << L << ".a * w;\n";
@@ -214,8 +258,16 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
     for (std::size_t j = 0; j < desc.lenses.size(); ++j) {
         if (desc.lenses[j].kind != LensKind::Highlight) continue;
         // Highlight lens: luminance raised inside, lowered outside, soft edge.
-        s << "    C *= mix(mix(1.0, uLensParam" << j << ".z, uLensParam" << j
-          << ".w), uLensParam" << j << ".y, lens" << j << ");\n";
+        s << "    C *= mix(mix(1.0, uLensParam" << j << ".z, uLensParam" << j << ".w), uLensParam"
+          << j << ".y, lens" << j << ");\n";
+    }
+    for (std::size_t j = 0; j < desc.lenses.size(); ++j) {
+        if (desc.lenses[j].kind != LensKind::Comparison) continue;
+        // Where the two stacks meet: a thin light line about 1.5 pixels wide along the mask's
+        // half-way level (screen-space derivative), so a viewer sees where the lens is.
+        s << "    C = mix(C, vec3(0.96), 0.85 * uLensParam" << j
+          << ".w * (1.0 - smoothstep(0.0, 1.5 * fwidth(lens" << j << ") + 1e-4, abs(lens" << j
+          << " - 0.5 * uLensParam" << j << ".w))));\n";
     }
     if (desc.outputPosition && desc.proceduralDetail)  // the displaced surface
         s << "    fragColor = vec4(vScenePos, vElevation + vDetailOffset, 2.0);\n}\n";

@@ -48,18 +48,33 @@ struct CompositeLayer {
      * from `fromElevation` / `arrival` (shaderOf()). A scene sets it from the layer's kind.
      */
     std::shared_ptr<const layers::LayerShader> shader{};
+    /**
+     * @brief Kinds computed from other layers (LayerShader::operands(), e.g. a difference A - B):
+     * the stack indices of those layers, sampled before this one.
+     */
+    std::vector<int> operands{};
 };
 
 /** @brief The piece that samples layer `l`: its own, or the built-in kind's. Never null. */
 std::shared_ptr<const layers::LayerShader> shaderOf(const CompositeLayer& l);
 
-/** @brief Lens kinds of Döllner §5 / Trapp's focus+context. */
-enum class LensKind { Highlight, Visibility };
+/**
+ * @brief Lens kinds of Döllner §5 / Trapp's focus+context. Comparison: two layer stacks, one
+ * drawn only inside the lens (run B, a difference), one only outside (run A).
+ */
+enum class LensKind { Highlight, Visibility, Comparison };
+/** @brief Round: circle or ellipse (uLens = centre, radii); Swipe: the half-plane on one side of
+ * a line through the centre (uLensRot = the unit normal pointing inside, uLensParam.x = soft
+ * edge in metres). */
+enum class LensShape { Round, Swipe };
 
 struct CompositeLens {
     LensKind kind = LensKind::Highlight;
     int insideLayer = -1;   ///< Visibility lens: layer shown inside
     int outsideLayer = -1;  ///< Visibility lens: layer shown outside
+    LensShape shape = LensShape::Round;
+    std::vector<int> insideLayers{};   ///< Comparison: the stack drawn inside
+    std::vector<int> outsideLayers{};  ///< Comparison: the stack drawn outside
 };
 
 struct CompositeProgramDesc {

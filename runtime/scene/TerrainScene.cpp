@@ -1,6 +1,5 @@
 #include "runtime/scene/TerrainScene.h"
 
-#include "runtime/anim/KeyedTrack.h"
 #include "runtime/color/TransferFunction.h"
 #include "runtime/core/Log.h"
 #include "runtime/loader/StoreTileLoader.h"
@@ -170,7 +169,7 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
     fn->setDerivedBudget(budget.cpuBytes / 4);
     // Test hook (atomic-step tests): a slow disk, in milliseconds per tile.
     if (const char* delay = std::getenv("GEOKIOSK_TEST_LOAD_DELAY_MS"))
-        fn->setArtificialDelay(std::atof(delay) / 1000.0);
+        fn->setArtificialDelay(std::atof(delay) / 1000.0, s->testDelayedStore());
     s->mLoader = std::make_unique<loader::TileLoader>(loader::LoaderOptions{}, std::move(fn));
     s->setOcclusionCulling(scenario.terrain.occlusionCulling);
     return s;
@@ -338,6 +337,7 @@ void TerrainScene::update(const math::Camera& camera, double time) {
     const bool requestsPending = !mSelection->requests.empty();
     // Display walls: the pair shown is the one at the wall's step time (TerrainSceneWall.cpp).
     applyStepGate(camera, time, wanted);
+    syncGroupsComplete(wanted);  // comparison sides and difference operands step together
 
     for (std::size_t i = 0; i < mLayers.size(); ++i) {
         StackLayer& l = mLayers[i];
@@ -356,7 +356,8 @@ void TerrainScene::update(const math::Camera& camera, double time) {
         // Atomic steps: a new frame pair becomes visible only when every tile of the view has
         // both its frames; until then the last complete pair stays (never a mix of times).
         l.shown = l.pair.update(w, l.sequence->frameTimes, time, [&](std::size_t frame) {
-            return (frame == w.i0 ? completeA : completeB) && completeT;
+            return (frame == w.i0 ? completeA : completeB) && completeT &&
+                   (l.syncGroup < 0 || mGroupComplete[std::size_t(l.syncGroup)]);
         });
         if (l.shown.hasPair && (l.shown.i0 != w.i0 || l.shown.i1 != w.i1)) {
             mSelector.setTextureFrame(std::size_t(l.specA), std::int32_t(l.shown.i0));
@@ -428,39 +429,6 @@ render::LayerBinding TerrainScene::bindingFor(const terrain::TextureAssignment& 
     return b;
 }
 
-void TerrainScene::bindLenses() {
-    const double start = mScenario->clock ? mScenario->clock->start : 0.0;
-    for (std::size_t j = 0; j < mScenario->lenses.size(); ++j) {
-        const config::Lens& lens = mScenario->lenses[j];
-        // Keyed positions: hold before the first key, piecewise linear between keys.
-        struct Place {
-            glm::dvec2 centre, radii;
-        };
-        const Place place = anim::keyedTrack(
-            Place{glm::dvec2(lens.center[0], lens.center[1]),
-                  glm::dvec2(lens.radii[0], lens.radii[1])},
-            lens.keys, mTime, [start](const config::LensKey& k) { return k.time.resolve(start); },
-            [](Place& p, const config::LensKey& k) {
-                if (k.center) p.centre = glm::dvec2((*k.center)[0], (*k.center)[1]);
-                if (k.radii) p.radii = glm::dvec2((*k.radii)[0], (*k.radii)[1]);
-            },
-            [](const Place& a, const Place& b, double t) {
-                return Place{glm::mix(a.centre, b.centre, t), glm::mix(a.radii, b.radii, t)};
-            });
-        const glm::dvec2 centre = place.centre, radii = place.radii;
-        render::LensBinding b;
-        b.centre = centre;
-        b.radii = glm::max(radii, glm::dvec2(1e-3));
-        b.rotationDeg = lens.rotation;
-        b.softEdge = float(std::clamp(lens.softEdge / std::max(b.radii.x, b.radii.y), 0.0, 1.0));
-        b.insideGain = float(1.0 + lens.raise);
-        b.outsideGain = float(1.0 - lens.lower);
-        b.enabled = lens.enabled;
-        mRenderer->setLens(int(j), b);
-        if (mDetail) setDetailLens(int(j), b);
-    }
-}
-
 void TerrainScene::noteDrawnFrames(const StackLayer& l, const terrain::DrawTile& t) {
     for (int k = 0; k < 2; ++k) {
         const int spec = k == 0 ? l.specA : l.specB;
@@ -508,6 +476,7 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
         const GpuSlot& g = mGpu[t.handle.index()];
         const terrain::TilePayload* p = mCache->get(t.handle);
         if (!g.mesh.valid() || !p || !p->mesh) continue;
+        groupTileValidity(t);
         for (std::size_t li = 0; li < mLayers.size(); ++li) {
             const StackLayer& l = mLayers[li];
             render::LayerBinding b;
@@ -531,6 +500,9 @@ void TerrainScene::draw(const math::Camera& camera, const render::TerrainStyle& 
                                           float((ft[l.shown.i1] - ft[l.shown.i0]) / l.timeUnit),
                                           0.0f, 0.0f);
                 }
+                // A sync group draws on a tile only where every member has its frames there
+                // (alone, a layer shows what has arrived meanwhile): no side shows alone.
+                if (l.syncGroup >= 0 && !groupDrawsTile(l)) b.valid = false;
             }
             b.strength = l.strengthOverride.value_or(l.strength);
             r.setLayer(int(li), b);

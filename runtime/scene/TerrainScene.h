@@ -110,6 +110,14 @@ struct SceneMemoryUsage {
     std::uint64_t mappingBytes = 0;  ///< projective-mapping data arrays
 };
 
+/** @brief Where a lens is (scene CRS metres), after its keys or a run-time move. */
+struct LensPlacement {
+    glm::dvec2 centre{0.0};
+    glm::dvec2 radii{1.0};     ///< circle / ellipse; a swipe lens has none
+    double rotationDeg = 0.0;  ///< ellipse axis, or the swipe line's inside direction
+    bool enabled = true;
+};
+
 /** @brief A transfer function ready for the GPU and the legend. */
 struct SceneLut {
     std::string name;
@@ -161,6 +169,20 @@ public:
     bool settled() const noexcept { return mSettled; }
     const SceneFrameInfo& frameInfo() const noexcept { return mFrame; }
     const std::vector<LayerStatus>& layerStatus() const noexcept { return mStatus; }
+    /**
+     * @brief The lens a user moves (keys in `play`, POST /control/lens): the first comparison
+     * lens, else the first lens; -1 without lenses (TerrainSceneLenses.cpp).
+     */
+    int primaryLens() const;
+    /** @brief Index of the lens with this id, -1 if none. */
+    int lensIndex(const std::string& id) const;
+    /** @brief Where lens `index` was drawn last frame (its keys, or where it was put). */
+    std::optional<LensPlacement> lensPlacement(int index) const;
+    /**
+     * @brief Put lens `index` at `p` from the next frame on; its keys no longer move it (until
+     * the scenario is re-opened). False for an index out of range.
+     */
+    bool placeLens(int index, const LensPlacement& p);
     /** @brief Cache bytes by kind (TerrainSceneUsage.cpp); walks the GPU slots, no allocation. */
     SceneCacheUsage cacheUsage() const;
 
@@ -251,6 +273,11 @@ private:
         bool productClock = false;
         double timeOrigin = 0, timeUnit = 3600;
         std::string legendTitle;  ///< the kind's legend title ("" : the transfer function's)
+        /**
+         * @brief Sequences that step together (a comparison lens's two sides, a difference's
+         * operands): index into mGroupComplete, -1 alone (TerrainSceneLenses.cpp).
+         */
+        int syncGroup = -1;
     };
 
     /**
@@ -283,6 +310,18 @@ private:
     bool detailHides(const terrain::DrawTile& t) const;
     void drawDetail(const math::Camera& camera, const render::TerrainStyle& style);
     void bindLenses();
+    /** @brief Group the layers that must step together (after the stack is built). */
+    void buildSyncGroups(const render::CompositeProgramDesc& desc);
+    /** @brief Per group: every member's wanted pair is complete for the view this frame. */
+    void syncGroupsComplete(const std::vector<anim::FrameBracket>& wanted);
+    /** @brief Per group, for drawing tile `t`: every member has its frame textures there. */
+    void groupTileValidity(const terrain::DrawTile& t);
+    /** @brief Member `l` may draw on the current tile: its group shows a pair and has it here. */
+    bool groupDrawsTile(const StackLayer& l) const {
+        return l.shown.hasPair && mGroupTileValid[std::size_t(l.syncGroup)] != 0;
+    }
+    /** @brief GEOKIOSK_TEST_LOAD_DELAY_STORE: the store (loader index) slowed by the test hook. */
+    int testDelayedStore() const;
     /** @brief Data layers and LUTs of the projective mappings (TerrainSceneMappings.cpp). */
     Diagnostics setupMappings(const gl::Caps& caps);
     /** @brief Evaluate, cull and upload the mappings for this frame. */
@@ -375,6 +414,10 @@ private:
     std::vector<int> mTileMappings;
     int mRoutePointLayer = -1;
     std::unique_ptr<DetailState, DetailDeleter> mDetail;
+    std::vector<std::uint8_t> mGroupComplete;            ///< per sync group, this frame
+    std::vector<std::uint8_t> mGroupTileValid;           ///< per sync group, the tile drawn
+    std::vector<std::optional<LensPlacement>> mLensPut;  ///< per lens: placed at run time
+    std::vector<LensPlacement> mLensDrawn;               ///< per lens: last frame's placement
     // TerrainSceneOcclusion.cpp: occlusion culling (W04 §5, docs/terrain.md §10).
     void planOcclusion(const math::Camera& camera, float verticalScale);
     /** @brief The tile at position k of the draw order is hidden (runs the rounds due first). */

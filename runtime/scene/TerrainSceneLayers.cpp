@@ -182,13 +182,34 @@ void TerrainScene::buildLayerStack(std::vector<loader::LayerBinding>& bindings,
         desc.layers[i].visibilityLayer = stackIndex(mLayers[i].config->operation.visibility);
         if (desc.layers[i].visibilityLayer < 0) desc.layers[i].op = render::LayerOp::Over;
     }
+    for (std::size_t i = 0; i < mLayers.size(); ++i)  // a difference's A and B
+        for (const auto& id : mLayers[i].config->operands) {
+            desc.layers[i].operands.push_back(stackIndex(id));
+            if (desc.layers[i].operands.back() >= 0) continue;
+            // Drawn transparent (the compositor's rule for an absent operand), said once here.
+            for (auto& st : mStatus)
+                if (st.id == mLayers[i].config->id && st.state != LayerState::Failed) {
+                    st.state = LayerState::Failed;
+                    st.message = mLayers[i].config->pointer + "/of: layer \"" + id +
+                                 "\" is not drawn (disabled or FAILED): nothing to subtract";
+                    KIOSK_LOG_WARN(kTag, "layer \"%s\" FAILED: %s", st.id.c_str(),
+                                   st.message.c_str());
+                }
+        }
     for (const auto& lens : mScenario->lenses) {
         render::CompositeLens cl{lens.kind == config::LensKind::Highlight
                                      ? render::LensKind::Highlight
                                      : render::LensKind::Visibility,
                                  stackIndex(lens.inside), stackIndex(lens.outside)};
+        if (lens.kind == config::LensKind::Comparison) {
+            cl.kind = render::LensKind::Comparison;
+            for (const auto& id : lens.insideStack) cl.insideLayers.push_back(stackIndex(id));
+            for (const auto& id : lens.outsideStack) cl.outsideLayers.push_back(stackIndex(id));
+        }
+        if (lens.shape == config::LensShape::Swipe) cl.shape = render::LensShape::Swipe;
         desc.lenses.push_back(cl);
     }
+    buildSyncGroups(desc);
 }
 
 std::string TerrainScene::legendTitle(const std::string& id) const {

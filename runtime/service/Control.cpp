@@ -61,6 +61,8 @@ const char* controlActionName(ControlAction a) noexcept {
             return "previous";
         case ControlAction::Reload:
             return "reload";
+        case ControlAction::Lens:
+            return "lens";
     }
     return "?";
 }
@@ -70,8 +72,8 @@ std::optional<ControlCommand> parseControl(std::string_view name, std::string_vi
     notFound = false;
     ControlCommand c;
     static constexpr ControlAction kAll[] = {
-        ControlAction::Pause, ControlAction::Play,     ControlAction::Seek,  ControlAction::Rate,
-        ControlAction::Next,  ControlAction::Previous, ControlAction::Reload};
+        ControlAction::Pause, ControlAction::Play,     ControlAction::Seek,   ControlAction::Rate,
+        ControlAction::Next,  ControlAction::Previous, ControlAction::Reload, ControlAction::Lens};
     bool known = false;
     for (ControlAction a : kAll)
         if (name == controlActionName(a)) {
@@ -103,6 +105,48 @@ std::optional<ControlCommand> parseControl(std::string_view name, std::string_vi
         c.rate = v;
     }
     return c;
+}
+
+bool parseLensMove(LensMove& out,
+                   const std::function<std::optional<std::string>(const char*)>& param,
+                   std::string& why) {
+    struct Number {
+        const char* name;
+        std::optional<double>* to;
+        double min, max;
+    };
+    const Number numbers[] = {{"x", &out.x, -1e9, 1e9},
+                              {"y", &out.y, -1e9, 1e9},
+                              {"radius", &out.radius, 1e-3, 1e9},
+                              {"rotation", &out.rotation, -360, 360}};
+    for (const Number& n : numbers) {
+        const auto text = param(n.name);
+        if (!text) continue;
+        char* end = nullptr;
+        const double v = std::strtod(text->c_str(), &end);
+        if (text->empty() || *end || !std::isfinite(v) || v < n.min || v > n.max) {
+            why = std::string("lens wants ") + n.name + " in [" + std::to_string(n.min) + ", " +
+                  std::to_string(n.max) + "], got '" + *text + "'";
+            return false;
+        }
+        *n.to = v;
+    }
+    if (const auto e = param("enabled")) {
+        if (*e == "1" || *e == "true")
+            out.enabled = true;
+        else if (*e == "0" || *e == "false")
+            out.enabled = false;
+        else {
+            why = "lens wants enabled=0|1 (or false|true), got '" + *e + "'";
+            return false;
+        }
+    }
+    if (const auto id = param("id")) out.id = *id;
+    if (!out.x && !out.y && !out.radius && !out.rotation && !out.enabled) {
+        why = "lens wants at least one of x, y, radius, rotation, enabled";
+        return false;
+    }
+    return true;
 }
 
 bool ControlQueue::push(const ControlCommand& c) {

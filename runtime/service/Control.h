@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -39,13 +40,23 @@ private:
     std::string mToken;
 };
 
-enum class ControlAction { Pause, Play, Seek, Rate, Next, Previous, Reload };
+enum class ControlAction { Pause, Play, Seek, Rate, Next, Previous, Reload, Lens };
 const char* controlActionName(ControlAction a) noexcept;
+
+/** @brief POST /control/lens: what to change of a lens (absent: keep). */
+struct LensMove {
+    std::string id;                  ///< empty: the first comparison lens (else the first lens)
+    std::optional<double> x, y;      ///< new centre, map coordinates (store CRS metres)
+    std::optional<double> radius;    ///< circle radius; an ellipse keeps its aspect
+    std::optional<double> rotation;  ///< degrees counter-clockwise (swipe: inside direction)
+    std::optional<bool> enabled;
+};
 
 struct ControlCommand {
     ControlAction action = ControlAction::Pause;
     TimeSpec time;      ///< Seek: ISO 8601 or an offset from the scenario start (+3h)
     double rate = 1.0;  ///< Rate: data seconds per wall second
+    LensMove lens;      ///< Lens
 };
 
 /**
@@ -55,6 +66,15 @@ struct ControlCommand {
  */
 std::optional<ControlCommand> parseControl(std::string_view name, std::string_view t,
                                            std::string_view r, std::string& why, bool& notFound);
+
+/**
+ * @brief The parameters of POST /control/lens: `param(name)` gives a query parameter (nullopt
+ * when absent) among id, x, y, radius, rotation, enabled. False with a one-line reason in `why`
+ * (HTTP 400) for a bad number or when none of the changes is given.
+ */
+bool parseLensMove(LensMove& out,
+                   const std::function<std::optional<std::string>(const char*)>& param,
+                   std::string& why);
 
 /** @brief Commands from the HTTP thread, taken by the frame loop once per frame. */
 class ControlQueue {

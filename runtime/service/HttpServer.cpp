@@ -73,6 +73,12 @@ bool HttpServer::start(const ListenAddress& address, HttpEndpoints endpoints, st
         bool notFound = false;
         auto cmd = parseControl(req.matches[1].str(), req.get_param_value("t"),
                                 req.get_param_value("r"), bad, notFound);
+        const auto param = [&req](const char* name) -> std::optional<std::string> {
+            if (!req.has_param(name)) return std::nullopt;
+            return req.get_param_value(name);
+        };
+        if (cmd && cmd->action == ControlAction::Lens && !parseLensMove(cmd->lens, param, bad))
+            cmd.reset();
         if (!cmd) {
             res.status = notFound ? 404 : 400;
             res.set_content(bad + "\n", "text/plain");

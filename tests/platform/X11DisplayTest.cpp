@@ -297,5 +297,33 @@ TEST_F(X11DisplayTest, ResizeIsTracked) {
     EXPECT_EQ(user.waitForPixel(399, 299, c), c);
 }
 
+TEST_F(X11DisplayTest, LensKeysAccumulateUntilCleared) {
+    // The comparison lens keys of `play` (docs/cli.md): w/a/s/d, [ ], r, c.
+    auto display = create(true, 200, 100);
+    ASSERT_TRUE(display);
+    Observer user(mServer.display());
+    ASSERT_TRUE(user.ok());
+    const Window w = user.findKioskWindow();
+    ASSERT_NE(w, Window(0));
+    for (KeySym sym : {XK_d, XK_d, XK_w, XK_s, XK_s, XK_s, XK_a, XK_bracketright, XK_bracketright,
+                       XK_bracketleft, XK_r, XK_c})
+        user.sendKey(w, sym);
+    InputState input;
+    for (int i = 0; i < 50 && !input.lensToggle; ++i) {
+        display->pollInput(input);
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    EXPECT_EQ(input.lensX, 1);
+    EXPECT_EQ(input.lensY, -2);
+    EXPECT_EQ(input.lensSize, 1);
+    EXPECT_EQ(input.lensTurn, 1);
+    EXPECT_TRUE(input.lensToggle);
+    EXPECT_FALSE(input.quitRequested);
+    input.clearRequests();
+    EXPECT_EQ(input.lensX, 0);
+    EXPECT_EQ(input.lensSize, 0);
+    EXPECT_FALSE(input.lensToggle);
+}
+
 }  // namespace
 }  // namespace kiosk::platform

@@ -121,5 +121,24 @@ TEST_F(VideoExportTest, CrfSetsTheQuality) {
     EXPECT_LT(fs::file_size(mDir / "coarse.mp4"), fs::file_size(mDir / "fine.mp4"));
 }
 
+// --preset reaches libx264: at the same CRF a slower preset finds a smaller file (ultrafast has
+// no CABAC and no B-frames), and both keep the quality the CRF asks for.
+TEST_F(VideoExportTest, PresetTradesEncodingTimeForFileSize) {
+    const std::string range = " --from +2h --to +2h20m --fps 10";  // 11 frames
+    ASSERT_EQ(render("ref/", range), 0);
+    const auto ref = pngs("ref");
+    ASSERT_EQ(ref.size(), 11u);
+    ASSERT_EQ(render("fast.mp4", range + " --preset ultrafast --crf 18"), 0);
+    ASSERT_EQ(render("small.mp4", range + " --preset veryfast --crf 18"), 0);
+    EXPECT_LT(fs::file_size(mDir / "small.mp4") * 5 / 4, fs::file_size(mDir / "fast.mp4"));
+    const double fast = test::clipPsnr(ref, test::decodeVideo(mDir / "fast.mp4").frames);
+    const double small = test::clipPsnr(ref, test::decodeVideo(mDir / "small.mp4").frames);
+    std::printf("PSNR ultrafast %.2f dB (%ju bytes), veryfast %.2f dB (%ju bytes)\n", fast,
+                std::uintmax_t(fs::file_size(mDir / "fast.mp4")), small,
+                std::uintmax_t(fs::file_size(mDir / "small.mp4")));
+    EXPECT_GT(fast, 36.0);
+    EXPECT_GT(small, 36.0);
+}
+
 }  // namespace
 }  // namespace kiosk

@@ -40,6 +40,8 @@ expect 2 "wants an ISO 8601" "$GK" render $DEMO --out "$tmp/x.png" --time yester
 expect 2 "--out must end in .png .*\.mp4, \.mkv or \.webm" "$GK" render $DEMO --out "$tmp/x.avi"
 expect 2 "--crf applies to .mp4 and .webm" "$GK" render $DEMO --out "$tmp/x.mkv" --crf 20
 expect 2 "--crf wants an integer 0..51" "$GK" render $DEMO --out "$tmp/x.mp4" --crf 99
+expect 2 "--preset applies to .mp4" "$GK" render $DEMO --out "$tmp/x.webm" --preset fast
+expect 2 "--preset wants one of ultrafast" "$GK" render $DEMO --out "$tmp/x.mp4" --preset quick
 expect 2 "needs an even --size, got 321x181" "$GK" render $DEMO --out "$tmp/x.mp4" --size 321x181
 expect 2 "--display wants auto\|kms\|x11\|wayland\|headless.*did you mean 'kms'" "$GK" play $DEMO --display kmz
 expect 2 "--reference wants lod or full" "$GK" render $DEMO --out "$tmp/x.png" --reference exact

@@ -99,20 +99,30 @@ TEST(ScenarioSchema, EnumValuesAreAcceptedByTheReader) {
     const json schema = loadSchema();
     ASSERT_TRUE(schema.is_object());
     const json& layerKinds = schema["$defs"]["Layer"]["properties"]["kind"]["enum"];
-    ASSERT_EQ(layerKinds.size(), 11u);
+    ASSERT_EQ(layerKinds.size(), 12u);
     for (const auto& kind : layerKinds) {
         const std::string k = kind.get<std::string>();
-        const bool derived = k == "maximum" || k == "arrival" || k == "duration" || k == "hazard";
+        // Sequences and the products derived from one read a sequence; arrival and duration
+        // need their threshold.
+        const bool seq = k == "sequence" || k == "maximum" || k == "arrival" || k == "duration" ||
+                         k == "hazard";
         const std::string source =
-            k == "sequence" || derived ? R"({"store": "v", "sequence": "s"})"
-                                       : R"({"store": "v", "layer": "x"})";
-        const std::string product =
-            k == "arrival" || k == "duration" ? R"(, "product": {"threshold": 1})" : "";
+            std::string(seq ? R"({"store": "v", "sequence": "s"})"
+                            : R"({"store": "v", "layer": "x"})") +
+            (k == "arrival" || k == "duration" ? R"(, "product": {"threshold": 0.1})" : "");
+        // A difference has no source: it subtracts two scalar layers of the stack.
+        const std::string layer =
+            k == "difference"
+                ? R"({"id": "p", "kind": "data", "source": {"store": "v", "layer": "x"},
+                      "transfer": "t"}, {"id": "a", "kind": "difference", "of": ["p", "p"],
+                      "transfer": "t"})"
+                : R"({"id": "a", "kind": ")" + k + R"(", "source": )" + source +
+                      R"(, "transfer": "t"})";
         const std::string text =
             R"({"version": 1, "stores": {"v": "v.gpkg"}, "terrain": {"store": "v"},
                 "transferFunctions": {"t": {"preset": "viridis"}},
-                "layers": [{"id": "a", "kind": ")" +
-            k + R"(", "source": )" + source + product + R"(, "transfer": "t"}]})";
+                "layers": [)" +
+            layer + "]}";
         auto r = parseScenario(text, "e.json");
         EXPECT_TRUE(r.ok()) << k << r.diagnostics.format();
     }
