@@ -15,7 +15,8 @@ namespace kiosk::platform {
  * releaseCompilerPages() hands those pages back with madvise(MADV_PAGEOUT): they are clean,
  * so nothing is written; a later compile faults back the pages it needs (from the page cache
  * while the kernel still has them, else from disk). Pages another process maps too are left
- * alone by the kernel. A driver without libLLVM (a GPU's own compiler) finds nothing to do.
+ * alone by the kernel. Any driver that compiles with libLLVM gets the same treatment (e.g.
+ * radeonsi); one without it finds nothing to do.
  *
  * Render thread only. The first call reads /proc/self/maps once (after the GL context exists);
  * every later call is at most one madvise per mapping and never allocates.
