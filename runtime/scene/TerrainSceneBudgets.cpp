@@ -31,6 +31,9 @@ std::vector<std::pair<std::string, double>> TerrainScene::budgets() const {
             {"cache_gpu_sized_to_view", mAutoGpu ? 1.0 : 0.0},
             {"view_working_set_cpu_bytes", double(mViewCpuHigh)},
             {"view_working_set_gpu_bytes", double(mViewGpuHigh)},
+            // Decoded tiles between loader and upload: the bound and the most held at once.
+            {"loader_max_bytes_in_flight", double(loader::LoaderOptions{}.maxBytesInFlight)},
+            {"loader_held_bytes_high", double(mLoader ? mLoader->counters().heldBytesHigh : 0)},
             {"sequence_prefetch_bytes", double(mAheadBytes)},
             {"upload_bytes_per_frame", double(mBudget.bytesPerFrame())},
             {"upload_ms_per_frame", mBudget.msPerFrame()},
