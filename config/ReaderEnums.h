@@ -27,6 +27,10 @@ inline const EnumTable<OperationType> kOperations = {
     {"mask", OperationType::Mask},       {"replace", OperationType::Replace}};
 inline const EnumTable<TerrainReference> kTerrainReferences = {{"lod", TerrainReference::Lod},
                                                                {"full", TerrainReference::Full}};
+inline const EnumTable<TextureCompression> kTextureCompressions = {
+    {"auto", TextureCompression::Auto},
+    {"astc", TextureCompression::Astc},
+    {"off", TextureCompression::Off}};
 inline const EnumTable<SequenceInterpolation> kInterpolations = {
     {"data", SequenceInterpolation::Data},
     {"none", SequenceInterpolation::None},

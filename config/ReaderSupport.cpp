@@ -15,7 +15,7 @@ const std::map<std::string, std::vector<std::string>>& propertyTable() {
         {"Governor", {"targetFps", "maxTauFactor", "minRenderScale"}},
         {"Terrain",
          {"store", "elevation", "tauGeom", "tauTex", "verticalExaggeration", "reference",
-          "cacheBytes", "gpuBytes", "proceduralDetail", "occlusionCulling"}},
+          "cacheBytes", "gpuBytes", "proceduralDetail", "occlusionCulling", "textureCompression"}},
         {"Layer",
          {"id", "kind", "source", "transfer", "operation", "enabled", "interpolate", "nodataAs",
           "product", "of"}},

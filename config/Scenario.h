@@ -42,6 +42,14 @@ struct SourceRef {
 /** @brief What the terrain draws: the error-bounded LOD, or every post (fidelity checks). */
 enum class TerrainReference { Lod, Full };
 
+/**
+ * @brief Imagery tiles as GPU blocks stored at import (docs/terrain.md §11). Auto: where the
+ * context has the format natively (never on a software rasterizer, which decompresses on
+ * upload); Astc: wherever the context lists KHR_texture_compression_astc_ldr, software too
+ * (tests, benchmarks); Off: the PNG tiles always.
+ */
+enum class TextureCompression { Auto, Astc, Off };
+
 struct Terrain {
     std::string store;
     std::string elevation = "elevation";
@@ -59,6 +67,7 @@ struct Terrain {
     bool proceduralDetail = false;
     /** @brief Skip tiles hidden behind nearer terrain (docs/terrain.md §10); false: draw all. */
     bool occlusionCulling = true;
+    TextureCompression textureCompression = TextureCompression::Auto;
     std::string pointer = "/terrain";
 };
 

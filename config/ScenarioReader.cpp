@@ -82,6 +82,7 @@ void Reader::terrain(const json& j) {
     if (const json* b = o.get("gpuBytes")) assign(t.gpuBytes, readBytes(mC, *b, o.at("gpuBytes")));
     assign(t.proceduralDetail, o.boolean("proceduralDetail"));
     assign(t.occlusionCulling, o.boolean("occlusionCulling"));
+    assign(t.textureCompression, o.oneOf("textureCompression", kTextureCompressions));
 }
 
 }  // namespace reader

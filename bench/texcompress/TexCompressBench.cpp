@@ -3,15 +3,21 @@
 // Debian 12 packages; there is no ETC2 encoder), their colour error (PSNR per layer), encode
 // cost, and what llvmpipe does with compressed uploads: the bytes it holds per texture (resident
 // set growth over many uploads), upload time and the frame time of a full-screen pass sampling
-// them, against RGBA8 in the same run. Prints ONE JSON object.
+// them, against RGBA8 in the same run. With --scenario and --compressed (a copy of the
+// scenario's store after `geokiosk import textures`): the running scene with the stored ASTC
+// blocks uploaded (terrain.textureCompression "astc") against the PNG tiles ("off"), the same
+// store, two sessions side by side, passes alternating: GPU texture bytes, time to settle a
+// view from cold (loads + uploads), frame time. Prints ONE JSON object.
 //
 // usage: bench-texcompress STORE [--tiles N] [--copies N]
+//                          [--scenario SCENARIO --compressed STORE [--frames N] [--passes N]]
 #include <GLES3/gl3.h>
 
 #include <sys/resource.h>
 #include <unistd.h>
 // After gl3.h: the KHR ASTC enums.
 #include "runtime/app/FrameStats.h"
+#include "runtime/app/Session.h"
 #include "runtime/core/Clock.h"
 #include "runtime/gl/ProgramBuilder.h"
 #include "runtime/gl/RenderTarget.h"
@@ -132,6 +138,92 @@ double sampleMs(GLuint program, GLuint tex, GLuint vao, int frames) {
     return app::percentile(ms, 50);
 }
 
+/** One mode of the running-scene comparison. */
+struct SceneMode {
+    std::unique_ptr<app::Session> session;
+    std::vector<double> frameMs;
+    double settleMs = 0, uploadMs = 0;
+    scene::SceneCacheUsage usage;
+};
+
+/** The scenario's views drawn with the stored ASTC blocks and with the PNG tiles (same store). */
+nlohmann::json sceneComparison(const bench::HeadlessGl& gl, const std::string& scenario,
+                               const std::string& store, int frames, int passes) {
+    nlohmann::json out;
+    const int w = 1280, h = 720;
+    auto target = gl::RenderTarget::create(w, h);
+    if (!target) return {{"error", "no render target"}};
+    target->bind();
+    SceneMode modes[2];
+    const config::TextureCompression kinds[2] = {config::TextureCompression::Off,
+                                                 config::TextureCompression::Astc};
+    for (int m = 0; m < 2; ++m) {
+        auto s = app::Session::open(scenario, gl.caps, [&](config::Scenario& sc) {
+            for (auto& [id, ref] : sc.stores)
+                if (id == sc.terrain.store) ref.path = store;
+            sc.terrain.textureCompression = kinds[m];
+        });
+        if (!s) return {{"error", s.diagnostics.format()}};
+        modes[m].session = std::move(*s.value);
+    }
+    out["texture_format"] = {
+        {"off", io::textureFormatName(modes[0].session->terrain().textureChoice().format)},
+        {"astc", io::textureFormatName(modes[1].session->terrain().textureChoice().format)}};
+    RealClock clock;
+    for (const auto& [name, vp] : modes[0].session->scenario().viewpoints) {
+        (void)vp;
+        nlohmann::json v;
+        v["viewpoint"] = name;
+        for (SceneMode& m : modes) {
+            m.frameMs.clear();
+            m.uploadMs = 0;
+            app::Session& s = *m.session;
+            auto at = s.viewpointAt(s.startTime(), name);
+            if (!at) continue;
+            const math::Camera cam =
+                app::makeCamera(*at, s.terrain().bounds(), w, h, s.scenario().camera.fovY);
+            // From what is resident after the previous view: loads and uploads of this one.
+            const double t0 = clock.now();
+            for (int k = 0; k < 60000 && (k == 0 || !s.terrain().settled()); ++k) {
+                s.prepare(cam, s.startTime());
+                m.uploadMs += s.terrain().frameInfo().uploadMs;
+            }
+            m.settleMs = (clock.now() - t0) * 1000.0;
+            m.usage = s.terrain().cacheUsage();
+        }
+        for (int p = 0; p < passes; ++p)
+            for (SceneMode& m : modes) {
+                app::Session& s = *m.session;
+                auto at = s.viewpointAt(s.startTime(), name);
+                if (!at) continue;
+                const math::Camera cam =
+                    app::makeCamera(*at, s.terrain().bounds(), w, h, s.scenario().camera.fovY);
+                for (int i = 0; i < frames; ++i) {
+                    const double t0 = clock.now();
+                    s.drawFrame(cam, s.startTime(), w, h);
+                    glFinish();
+                    m.frameMs.push_back((clock.now() - t0) * 1000.0);
+                }
+            }
+        const char* names[2] = {"off_baseline", "astc"};
+        for (int k = 0; k < 2; ++k) {
+            const SceneMode& m = modes[k];
+            if (m.frameMs.empty()) continue;
+            v[names[k]] = {{"frame_ms_p50", app::percentile(m.frameMs, 50)},
+                           {"frame_ms_min", *std::min_element(m.frameMs.begin(), m.frameMs.end())},
+                           {"settle_ms", m.settleMs},
+                           {"upload_ms_while_settling", m.uploadMs},
+                           {"gpu_texture_bytes", m.usage.gpuTextures},
+                           {"gpu_texture_bytes_compressed", m.usage.gpuTexturesCompressed}};
+        }
+        out["views"].push_back(v);
+    }
+    out["size"] = "1280x720";
+    out["frames_per_pass"] = frames;
+    out["passes"] = passes;
+    return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -139,14 +231,27 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "usage: bench-texcompress STORE [--tiles N] [--copies N]\n");
         return 2;
     }
-    int maxTiles = 12, copies = 64;
+    int maxTiles = 12, copies = 64, frames = 5, passes = 4;
+    std::string scenario, compressed;
     for (int i = 2; i + 1 < argc; i += 2) {
         if (!std::strcmp(argv[i], "--tiles"))
             maxTiles = std::max(1, std::atoi(argv[i + 1]));
         else if (!std::strcmp(argv[i], "--copies"))
             copies = std::max(4, std::atoi(argv[i + 1]));
+        else if (!std::strcmp(argv[i], "--scenario"))
+            scenario = argv[i + 1];
+        else if (!std::strcmp(argv[i], "--compressed"))
+            compressed = argv[i + 1];
+        else if (!std::strcmp(argv[i], "--frames"))
+            frames = std::max(1, std::atoi(argv[i + 1]));
+        else if (!std::strcmp(argv[i], "--passes"))
+            passes = std::max(1, std::atoi(argv[i + 1]));
         else
             return 2;
+    }
+    if (scenario.empty() != compressed.empty()) {
+        std::fprintf(stderr, "bench-texcompress: --scenario and --compressed go together\n");
+        return 2;
     }
     auto headless = bench::openHeadlessGl();
     if (!headless) return 3;
@@ -244,6 +349,8 @@ int main(int argc, char** argv) {
         const double c = sampleMs(p, rgba.textures.front().id(), vao.id(), 15);
         out["full_screen_4_fetch_ms_p50"] = {{"rgba8", std::min(a, c)}, {"astc4x4", b}};
     }
+    if (!scenario.empty())
+        out["scene"] = sceneComparison(*headless, scenario, compressed, frames, passes);
     std::printf("%s\n", out.dump().c_str());
     return 0;
 }

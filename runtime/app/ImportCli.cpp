@@ -2,6 +2,7 @@
 
 #include "runtime/app/ImportCommand.h"
 #include "runtime/app/LocalTinCommand.h"
+#include "runtime/app/TextureCommand.h"
 #include "runtime/app/TopographicCommand.h"
 #include "runtime/core/ExitCode.h"
 
@@ -22,6 +23,8 @@ int dispatch(const std::vector<std::string>& args) {
         return runImportTopographic({args.begin() + 1, args.end()});
     if (!args.empty() && (args[0] == "breaklines" || args[0] == "model-mesh"))
         return runImportLocalTins(args[0], {args.begin() + 1, args.end()});
+    if (!args.empty() && args[0] == "textures")
+        return runImportTextures({args.begin() + 1, args.end()});
     return runImportCommand(args);
 }
 

@@ -26,7 +26,7 @@ constexpr const char* kUsage =
     "       geokiosk import sequence SRC... --store STORE --name NAME [--times TIMES.csv]\n"
     "                       [--variable VAR] [--start TIME] [--step SECONDS] [--like RASTER]\n"
     "                       [--wet-threshold M] [--categorical] [--units U]\n"
-    "       geokiosk import topographic|breaklines|model-mesh ... (see their --help)\n"
+    "       geokiosk import topographic|breaklines|model-mesh|textures ... (see their --help)\n"
     "common: [--assign-crs CRS] [--to-crs CRS] [--max-memory MB] [--quiet] [--threads N]\n"
     "  --assign-crs names the source's CRS (EPSG:N, WKT or PROJ), --to-crs the new store's\n"
     "  (default: the source's; UTM of the centre, or a global projection for wide geographic\n"

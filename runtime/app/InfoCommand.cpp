@@ -42,6 +42,7 @@ nlohmann::json budgetsOf(const io::TileGrid& g) {
             {"upload_bytes_per_frame", D::kUploadBytesPerFrame},
             {"upload_ms_per_frame", D::kUploadMsPerFrame},
             {"loader_max_in_flight", loader::LoaderOptions{}.maxInFlight},
+            {"loader_max_bytes_in_flight", loader::LoaderOptions{}.maxBytesInFlight},
             // What one tile costs resident: RGBA8 with mipmaps; sequence frames as RG16F posts.
             {"imagery_tile_gpu_bytes", tw * th * 4 * 4 / 3},
             {"sequence_tile_gpu_bytes", (tw + 1) * (th + 1) * 4}};
@@ -172,11 +173,12 @@ int runInfoCommand(const std::vector<std::string>& args) {
     std::printf(
         "budgets: cache sized to the view's working set x%.1f (at least %.0f MiB CPU, %.0f MiB "
         "GPU; terrain.cacheBytes/gpuBytes override), uploads %.0f MiB / %.0f ms per frame, "
-        "%d tiles in flight; per tile: imagery %lld B, sequence frame %lld B\n",
+        "%d tiles / %.0f MiB in flight; per tile: imagery %lld B, sequence frame %lld B\n",
         b["working_set_margin"].get<double>(), b["cache_cpu_floor_bytes"].get<double>() / 1048576.0,
         b["cache_gpu_floor_bytes"].get<double>() / 1048576.0,
         b["upload_bytes_per_frame"].get<double>() / 1048576.0,
         b["upload_ms_per_frame"].get<double>(), b["loader_max_in_flight"].get<int>(),
+        b["loader_max_bytes_in_flight"].get<double>() / 1048576.0,
         b["imagery_tile_gpu_bytes"].get<long long>(),
         b["sequence_tile_gpu_bytes"].get<long long>());
     return kExitOk;

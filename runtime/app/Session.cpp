@@ -10,17 +10,22 @@
 #include "runtime/core/Log.h"
 #include "runtime/core/Strings.h"
 #include "runtime/io/StoreReader.h"
+#include "runtime/platform/CompilerPages.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <malloc.h>
 #include <map>
 
 namespace kiosk::app {
 namespace {
 
 constexpr const char* kTag = "app::Session";
+/** Shader compiles come in bursts (start-up, a new layer or state): between them llvmpipe's
+ * compiler code goes back to the kernel at most this often (platform/CompilerPages.h). */
+constexpr double kCompilerPagesEverySeconds = 2.0;
 
 math::Viewpoint toViewpoint(const config::Viewpoint& v) {
     return {glm::dvec3(v.target[0], v.target[1], v.target[2]), v.heading, v.pitch, v.range};
@@ -211,6 +216,9 @@ FrameRecord Session::drawFrame(const math::Camera& camera, double time, int widt
     const auto tOverlay = PhaseClock::now();
     mOverlayLayout ? drawWallOverlays(time, width, height) : drawOverlays(time, width, height);
     const double overlayMs = msSince(tOverlay);
+    // Between shader-compile bursts llvmpipe's compiler code, and the allocator's free pages,
+    // go back to the kernel, at most every 2 s (docs/performance.md §5).
+    if (platform::releaseCompilerPages(kCompilerPagesEverySeconds)) malloc_trim(0);
 
     const auto& f = mScene->frameInfo();
     FrameRecord r;

@@ -5,6 +5,7 @@
 #include "runtime/color/TransferFunction.h"
 #include "runtime/core/Log.h"
 #include "runtime/io/StoreReader.h"
+#include "runtime/platform/CompilerPages.h"
 
 namespace kiosk::app {
 namespace {
@@ -23,6 +24,10 @@ std::vector<std::pair<std::string, double>> Session::budgets() const {
                            {"font_atlas_bytes_used", double(u.fontAtlasBytes)},
                            {"sqlite_page_cache_bytes_per_connection",
                             double(io::StoreReader::pageCacheBytes())}});
+    // llvmpipe's compiler code handed back between compiles (platform/CompilerPages.h).
+    const platform::CompilerPagesStats cp = platform::compilerPagesStats();
+    out.insert(out.end(), {{"compiler_code_bytes_mapped", double(cp.mappedBytes)},
+                           {"compiler_code_releases", double(cp.releases)}});
     return out;
 }
 

@@ -51,6 +51,7 @@ public:
         }
         meshes(level);
         tins(level);
+        textures(level);
         if (level == IntegrityLevel::Deep)
             for (const auto& t : mTables) tiles(t);
         if (mTileProblems > kMaxReportedTileProblems)
@@ -309,6 +310,62 @@ private:
                           "-post tiles, the grid's are " + std::to_string(mTileW);
             if (problem.empty() || ++mTileProblems > kMaxReportedTileProblems) continue;
             error(where, problem, "STORE_TIN_CORRUPT");
+        }
+    }
+
+    // kiosk_tile_textures (import textures; optional). Core: registered; Tables: rows only of
+    // imagery tables' tiles (a data layer is never lossy-compressed); Deep: every row's sizes
+    // and blob agree (TextureBlocks.h) for the grid's tile size.
+    void textures(IntegrityLevel level) {
+        if (!mDb.tableExists(kTileTexturesTable)) return;
+        if (count("SELECT COUNT(*) FROM gpkg_extensions WHERE table_name = ?1 AND "
+                  "extension_name = ?1",
+                  kTileTexturesTable) != 1)
+            error(kTileTexturesTable, "table is not registered in gpkg_extensions");
+        if (level == IntegrityLevel::Core) return;
+        const auto foreign = count(
+            "SELECT COUNT(*) FROM kiosk_tile_textures WHERE table_name NOT IN (SELECT "
+            "table_name FROM kiosk_layers WHERE kind = 'imagery')");
+        if (foreign.value_or(0) > 0)
+            error(kTileTexturesTable,
+                  std::to_string(*foreign) + " textures of tables that are not imagery layers");
+        for (const auto& t : mTables) {
+            if (t.scalar || !mDb.tableExists(t.name)) continue;
+            const auto orphans = count(
+                "SELECT COUNT(*) FROM kiosk_tile_textures m WHERE m.table_name = ?1 AND NOT "
+                "EXISTS (SELECT 1 FROM " +
+                    quoteIdentifier(t.name) +
+                    " t WHERE t.zoom_level = m.zoom_level AND t.tile_column = m.tile_column AND "
+                    "t.tile_row = m.tile_row)",
+                t.name);
+            if (orphans.value_or(0) > 0)
+                error(std::string(kTileTexturesTable) + "/" + t.name,
+                      std::to_string(*orphans) + " textures of tiles the table does not have");
+        }
+        if (level != IntegrityLevel::Deep) return;
+        auto st = mDb.prepare(
+            "SELECT table_name, zoom_level, tile_column, tile_row, format, width, height, "
+            "levels, length(blocks) FROM kiosk_tile_textures");
+        if (!st) return;
+        while (st->step() == SQLITE_ROW) {
+            CompressedImage image;
+            image.id = TileId{int(st->columnInt(1)), int(st->columnInt(2)), int(st->columnInt(3))};
+            image.format = parseTextureFormat(st->columnText(4)).value_or(TextureFormat::None);
+            image.width = int(st->columnInt(5));
+            image.height = int(st->columnInt(6));
+            image.levels = int(st->columnInt(7));
+            const std::string where = tileName(st->columnText(0), image.id);
+            Diagnostics r =
+                checkCompressedImage(image, std::size_t(st->columnInt(8)), mDb.path(), where);
+            std::string problem;
+            if (r.hasErrors())
+                problem = r.firstError()->message;
+            else if (image.width != mTileW || image.height != mTileH)
+                problem = "stored texture is " + std::to_string(image.width) + "x" +
+                          std::to_string(image.height) + ", the grid's tiles " +
+                          std::to_string(mTileW) + "x" + std::to_string(mTileH);
+            if (problem.empty() || ++mTileProblems > kMaxReportedTileProblems) continue;
+            error(where, problem, "STORE_TEXTURE_CORRUPT");
         }
     }
 

@@ -61,6 +61,14 @@ public:
         return mQueries.readMesh(layer, id, tolerance, baseTolerance, out);
     }
 
+    Result<bool> readTileTexture(const std::string& layer, const TileId& id, TextureFormat format,
+                                 CompressedImage& out) override {
+        if (!mHasTextures) return false;
+        const LayerInfo* l = mInfo.findLayer(layer);
+        if (!l || l->kind != LayerKind::Imagery) return false;  // values are never compressed
+        return mQueries.readTexture(layer, id, format, out);
+    }
+
     Result<bool> readTileTin(const std::string& layer, const TileId& id, double tolerance,
                              TileTinRow& out) override {
         if (!mHasTins) return false;
@@ -95,6 +103,7 @@ private:
     std::map<std::string, std::vector<std::string>> mFrameTables;
     bool mHasMeshes = false;  // kiosk_tile_meshes exists (stores imported since issue 20)
     bool mHasTins = false;    // kiosk_tile_tins exists (import breaklines / model-mesh)
+    bool mHasTextures = false;  // kiosk_tile_textures exists (import textures)
 };
 
 Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
@@ -199,6 +208,7 @@ Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
             }
     mHasMeshes = mDb.tableExists(kTileMeshesTable);
     mHasTins = mDb.tableExists(kTileTinsTable);
+    mHasTextures = mDb.tableExists(kTileTexturesTable);
 
     if (mDb.tableExists(kSequencesTable)) {
         auto ss = mDb.prepare(

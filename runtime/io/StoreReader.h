@@ -3,6 +3,7 @@
 #include "runtime/core/Result.h"
 #include "runtime/io/MeshBlob.h"
 #include "runtime/io/StoreTypes.h"
+#include "runtime/io/TextureBlocks.h"
 #include "runtime/io/TinBlob.h"
 
 #include <cstdint>
@@ -59,6 +60,16 @@ public:
     virtual Result<bool> readTileMesh(const std::string& layer, const TileId& id, double tolerance,
                                       double baseTolerance, TileMeshRow& out) {
         (void)layer, (void)id, (void)tolerance, (void)baseTolerance, (void)out;
+        return false;
+    }
+    /**
+     * @brief An imagery tile's GPU blocks of `format` stored at import (kiosk_tile_textures),
+     * into `out` (its buffer reused), not decoded; false when the store has none for the tile
+     * (the caller reads the PNG). STORE_TEXTURE_CORRUPT when the row's sizes and blob disagree.
+     */
+    virtual Result<bool> readTileTexture(const std::string& layer, const TileId& id,
+                                         TextureFormat format, CompressedImage& out) {
+        (void)layer, (void)id, (void)format, (void)out;
         return false;
     }
     /**

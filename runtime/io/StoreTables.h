@@ -4,6 +4,7 @@
 #include "runtime/io/MeshBlob.h"
 #include "runtime/io/SqliteDb.h"
 #include "runtime/io/StoreTypes.h"
+#include "runtime/io/TextureBlocks.h"
 #include "runtime/io/TinBlob.h"
 
 #include <map>
@@ -26,6 +27,8 @@ inline constexpr const char* kTileMeshesTable = "kiosk_tile_meshes";
 inline constexpr const char* kTileMeshesExtension = "kiosk_tile_meshes";
 inline constexpr const char* kTileTinsTable = "kiosk_tile_tins";
 inline constexpr const char* kTileTinsExtension = "kiosk_tile_tins";
+inline constexpr const char* kTileTexturesTable = "kiosk_tile_textures";
+inline constexpr const char* kTileTexturesExtension = "kiosk_tile_textures";
 inline constexpr const char* kCoverageExtension = "gpkg_2d_gridded_coverage";
 /** @brief gpkg_extensions.definition of our extensions (plus "#extension_name"). */
 inline constexpr const char* kOurDefinition = "https://geokiosk.invalid/docs/store-format.md";
@@ -72,6 +75,13 @@ public:
      */
     Result<bool> readTin(const std::string& table, const TileId& id, double tolerance,
                          TileTinRow& out);
+    /**
+     * @brief Into `out` (buffer reused): a tile's GPU blocks of `format` (kiosk_tile_textures,
+     * StoreTextureQueries.cpp); false when the tile has none. A row whose sizes do not agree
+     * with its blob is STORE_TEXTURE_CORRUPT naming the tile.
+     */
+    Result<bool> readTexture(const std::string& table, const TileId& id, TextureFormat format,
+                             CompressedImage& out);
     /** @brief Stats row, nullopt if absent. */
     std::optional<TileStats> stats(const std::string& table, const TileId& id);
 
@@ -81,7 +91,7 @@ private:
 
     SqliteDb* mDb;
     std::map<std::string, Statement> mScalar, mImage;
-    Statement mStats, mMesh, mTin;
+    Statement mStats, mMesh, mTin, mTexture;
 };
 
 /** @brief `table/level/column/row`, the `where` of tile diagnostics. */

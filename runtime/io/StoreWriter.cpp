@@ -580,6 +580,7 @@ Diagnostics StoreWriter::commit() {
     mInsertAncillary = Statement();
     mInsertStats = Statement();
     mInsertMesh = Statement();
+    mInsertTexture = Statement();
     mQueries.reset();
     d.append(mDb.exec("PRAGMA application_id = " + std::to_string(kGpkgApplicationId) +
                       "; PRAGMA user_version = " + std::to_string(kGpkgUserVersion) +

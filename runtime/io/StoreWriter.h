@@ -115,6 +115,16 @@ public:
                            const std::string& source, double tolerance, double maxError,
                            std::size_t vertices, std::size_t triangles,
                            const std::vector<std::uint8_t>& blob);
+    /**
+     * @brief Create kiosk_tile_textures (and register its extension) if the store has none yet;
+     * StoreWriterTextures.cpp.
+     */
+    Diagnostics createTileTextures();
+    /** @brief Remove a layer's stored textures of `format` (import textures replaces them). */
+    Diagnostics deleteTileTextures(const std::string& table, TextureFormat format);
+    /** @brief Store (or replace) a tile's GPU blocks; `psnrDb`: level 0 against the PNG. */
+    Diagnostics putTileTexture(const std::string& table, const CompressedImage& image,
+                               double psnrDb);
     /** @brief Every tile of a table, coarse levels first (for a pass over a finished layer). */
     Result<std::vector<TileId>> tileIds(const std::string& table);
 
@@ -136,7 +146,7 @@ private:
     std::optional<TileGrid> mGrid;
     std::unique_ptr<TileQueries> mQueries;
     std::map<std::string, Statement> mInsertTile;
-    Statement mInsertAncillary, mInsertStats, mInsertMesh, mInsertTin;
+    Statement mInsertAncillary, mInsertStats, mInsertMesh, mInsertTin, mInsertTexture;
     std::map<std::string, double> mScaleOf;
     bool mCommitted = false;
 };

@@ -167,6 +167,20 @@ bool StoreTileLoader::loadTin(const LayerBinding& layer, const TileId& id, int t
     return false;
 }
 
+bool StoreTileLoader::loadCompressed(const LayerBinding& layer, const TileId& id,
+                                     terrain::TilePayload& p) {
+    if (mTextureFormat == io::TextureFormat::None) return false;
+    io::CompressedImage image;
+    Result<bool> row = mReader->readTileTexture(layer.name, id, mTextureFormat, image);
+    if (row.ok() && *row) {
+        p.compressed = std::move(image);
+        return true;
+    }
+    // The PNG is intact: draw it and say once for the tile why.
+    if (!row.ok()) warnInstead(row.diagnostics, " (PNG tile drawn instead)", p);
+    return false;
+}
+
 StoreTileLoader::StoreTileLoader(StoreOpener opener, std::vector<LayerBinding> layers,
                                  terrain::TerrainOptions options)
     : StoreTileLoader(std::vector<StoreOpener>{std::move(opener)}, std::move(layers), options) {}
@@ -253,6 +267,7 @@ TilePayload StoreTileLoader::load(const LoadRequest& request) {
             break;
         }
         case io::LayerKind::Imagery: {
+            if (loadCompressed(layer, id, p)) break;
             Result<io::ImageTile> r = mReader->readImagery(layer.name, id);
             if (!r.ok()) {
                 markFailure(p, std::move(r.diagnostics));

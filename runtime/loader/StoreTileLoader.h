@@ -75,6 +75,11 @@ public:
     }
     /** @brief Bytes the running states of derived products may hold (set before start). */
     void setDerivedBudget(std::size_t bytes) noexcept { mDerived.setBudget(bytes); }
+    /**
+     * @brief Imagery tiles as the GPU blocks of `format` where the store holds them
+     * (kiosk_tile_textures; the PNG otherwise); None (default): always the PNG. Before start.
+     */
+    void setTextureFormat(io::TextureFormat format) noexcept { mTextureFormat = format; }
 
 private:
     void loadArrivalThresholds(const LayerBinding& layer, int frame, terrain::TilePayload& p);
@@ -95,6 +100,11 @@ private:
      * TIN: then a warning naming the tile is in `p`).
      */
     bool loadTin(const LayerBinding& layer, const TileId& id, int tier, terrain::TilePayload& p);
+    /**
+     * @brief The imagery tile's stored GPU blocks (true); false to read the PNG (none stored,
+     * or a damaged row: then a warning naming the tile is in `p`).
+     */
+    bool loadCompressed(const LayerBinding& layer, const TileId& id, terrain::TilePayload& p);
 
     std::vector<StoreOpener> mOpeners;
     std::vector<LayerBinding> mLayers;
@@ -109,6 +119,7 @@ private:
     io::TileTinRow mTinRow;
     double mDelaySeconds = 0.0;
     int mDelayStore = -1;  ///< -1: every store is slow
+    io::TextureFormat mTextureFormat = io::TextureFormat::None;
     DerivedTiles mDerived;  ///< running states of cumulative products, per tile
 };
 

@@ -29,6 +29,7 @@ TileLoader::TileLoader(LoaderOptions options, std::unique_ptr<LoadFunction> func
         v->reserve(mOptions.expectedRequests);
     mPending.reserve(mOptions.maxInFlight + 1);
     mRing.resize(mOptions.maxInFlight);
+    mRingSlotBytes.assign(mOptions.maxInFlight, 0);
     mDelivered.resize(256 + 4 * std::size_t(mOptions.maxInFlight));
     if (mFunction) mThread = std::thread([this] { run(); });
 }
@@ -88,6 +89,8 @@ bool TileLoader::tryPop(LoadResult& out) {
     std::unique_lock<std::mutex> lock(mMutex, std::try_to_lock);
     if (!lock.owns_lock() || mRingCount == 0) return false;
     out = std::move(mRing[mRingHead]);
+    mRingBytes -= mRingSlotBytes[mRingHead];
+    mRingSlotBytes[mRingHead] = 0;
     mRingHead = (mRingHead + 1) % std::uint32_t(mRing.size());
     --mRingCount;
     removePendingLocked(out.request.key);
@@ -110,6 +113,8 @@ void TileLoader::invalidate() {
         while (mRingCount > 0) {
             removePendingLocked(mRing[mRingHead].request.key);
             mRing[mRingHead] = LoadResult{};
+            mRingBytes -= mRingSlotBytes[mRingHead];
+            mRingSlotBytes[mRingHead] = 0;
             mRingHead = (mRingHead + 1) % std::uint32_t(mRing.size());
             --mRingCount;
             ++mCounters.droppedInvalidated;
@@ -135,6 +140,11 @@ std::uint32_t TileLoader::queued() const {
     // A dirty shared set replaces the work queue on the loader's next look; else work is current.
     return std::uint32_t((mSharedDirty ? mShared.size() : mWork.size()) +
                          (mPrefetchDirty ? mPrefetchShared.size() : mPrefetchWork.size()));
+}
+
+std::size_t TileLoader::heldBytes() const {
+    std::lock_guard<std::mutex> lock(mMutex);
+    return mRingBytes;
 }
 
 bool TileLoader::isPendingLocked(const terrain::TileKey& key) const {
@@ -179,9 +189,13 @@ void TileLoader::run() {
                     mPrefetchDirty = false;
                     std::make_heap(mPrefetchWork.begin(), mPrefetchWork.end(), lowerPriority);
                 }
-                const bool room = mRingCount < mOptions.maxInFlight;
+                // Room by count and by bytes (the first result is always allowed).
+                const bool bytesFull = mOptions.maxBytesInFlight > 0 && mRingCount > 0 &&
+                                       mRingBytes >= mOptions.maxBytesInFlight;
+                const bool room = mRingCount < mOptions.maxInFlight && !bytesFull;
                 std::vector<LoadRequest>* queue =
                     !mWork.empty() ? &mWork : (!mPrefetchWork.empty() ? &mPrefetchWork : nullptr);
+                if (bytesFull && queue) ++mCounters.waitsForBytes;
                 if (room && queue) {
                     std::pop_heap(queue->begin(), queue->end(), lowerPriority);
                     req = queue->back();
@@ -228,7 +242,11 @@ void TileLoader::run() {
             continue;
         }
         const std::uint32_t slot = (mRingHead + mRingCount) % std::uint32_t(mRing.size());
+        const std::size_t bytes = payload.byteSize();
         mRing[slot] = LoadResult{req, std::move(payload), loadSeconds};
+        mRingSlotBytes[slot] = bytes;
+        mRingBytes += bytes;
+        mCounters.heldBytesHigh = std::max<std::uint64_t>(mCounters.heldBytesHigh, mRingBytes);
         ++mRingCount;
     }
     mFunction->threadStopping();

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -49,6 +50,14 @@ struct LoaderOptions {
     std::uint32_t maxInFlight = 8;
     /** @brief Initial capacity of the request vectors (they grow if a frame asks for more). */
     std::uint32_t expectedRequests = 1024;
+    /**
+     * @brief Bytes (TilePayload::byteSize) the results not yet taken by tryPop may hold: no new
+     * load starts while they hold this much or more, so the decoded-but-not-uploaded payloads
+     * stay under this plus one payload however far a slow render thread falls behind (tile
+     * sizes vary 10x, a count alone does not bound them). One result is always allowed. 0: no
+     * byte bound (maxInFlight only). docs/performance.md §5.
+     */
+    std::size_t maxBytesInFlight = std::size_t(4) << 20;
 };
 
 struct LoaderCounters {
@@ -58,6 +67,8 @@ struct LoaderCounters {
     std::uint64_t droppedStale = 0;        ///< replaced by a newer submission before being started
     std::uint64_t droppedDuplicate = 0;    ///< key already loading or waiting in the completions
     std::uint64_t droppedInvalidated = 0;  ///< finished after invalidate(): never delivered
+    std::uint64_t heldBytesHigh = 0;       ///< most bytes the completion ring held at once
+    std::uint64_t waitsForBytes = 0;       ///< times the loader idled on maxBytesInFlight
 };
 
 /**
@@ -102,6 +113,9 @@ public:
     std::uint32_t inFlight() const;
     /** @brief Requests handed over and not yet started (frame set plus prefetch set). */
     std::uint32_t queued() const;
+    /** @brief Bytes held by finished results not yet popped (TilePayload::byteSize). */
+    std::size_t heldBytes() const;
+    const LoaderOptions& options() const noexcept { return mOptions; }
 
 private:
     void run();
@@ -128,6 +142,8 @@ private:
     std::vector<terrain::TileKey> mPending;  // loading or in the completion ring
     std::vector<LoadResult> mRing;           // completion ring, capacity maxInFlight
     std::uint32_t mRingHead = 0, mRingCount = 0;
+    std::size_t mRingBytes = 0;               // sum of byteSize() of the ring's results
+    std::vector<std::size_t> mRingSlotBytes;  // per ring slot, capacity maxInFlight
     bool mLoading = false;
     LoaderCounters mCounters;
     // Recently delivered keys with the generation current at delivery: a queued request from a

@@ -22,6 +22,26 @@ gl::Texture makeRgbaTexture(int width, int height, const std::uint8_t* rgba, boo
     return tex;
 }
 
+gl::Texture makeCompressedTexture(const io::CompressedImage& image) {
+    // GL_COMPRESSED_RGBA_ASTC_4x4_KHR (KHR_texture_compression_astc_ldr)
+    constexpr GLenum kAstc4x4 = 0x93B0;
+    auto tex = gl::Texture::create();
+    glBindTexture(GL_TEXTURE_2D, tex.id());
+    for (int level = 0; level < image.levels; ++level) {
+        const int w = image.levelWidth(level), h = image.levelHeight(level);
+        glCompressedTexImage2D(GL_TEXTURE_2D, level, kAstc4x4, w, h, 0,
+                               GLsizei(io::textureImageBytes(image.format, w, h)),
+                               image.blocks.data() + image.levelOffset(level));
+    }
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, image.levels - 1);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
+                    image.levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+    return tex;
+}
+
 gl::Texture makeLutTexture(int size, const std::uint8_t* rgba) {
     return makeRgbaTexture(size, 1, rgba, false);
 }

@@ -4,11 +4,20 @@
 #include <optional>
 
 #include "runtime/gl/GlObject.h"
+#include "runtime/io/TextureBlocks.h"
 
 namespace kiosk::render {
 
 /** @brief RGBA8 2D texture from tightly packed pixels (top row first), linear, clamped. */
 gl::Texture makeRgbaTexture(int width, int height, const std::uint8_t* rgba, bool mipmaps);
+
+/**
+ * @brief GPU blocks stored at import (io::CompressedImage, checked when read) as a compressed
+ * texture, its levels as stored (glCompressedTexImage2D each; GL_TEXTURE_MAX_LEVEL = levels - 1
+ * keeps a partial chain complete), linear filtering between levels as makeRgbaTexture's mipmaps,
+ * clamped. The caller checked the context has the format (scene/TextureChoice.h).
+ */
+gl::Texture makeCompressedTexture(const io::CompressedImage& image);
 
 /**
  * @brief A transfer-function LUT as a `size x 1` RGBA8 texture sampled with LINEAR filtering

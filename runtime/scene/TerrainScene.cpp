@@ -167,6 +167,12 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
     auto fn = std::make_unique<loader::StoreTileLoader>(std::move(openers), bindings, s->mOptions);
     // Running states of derived products (loader thread): a quarter of the CPU tile budget.
     fn->setDerivedBudget(budget.cpuBytes / 4);
+    // Imagery as stored GPU blocks where the context has the format (docs/terrain.md §11).
+    s->mTextureChoice = chooseTextureFormat(scenario.terrain.textureCompression, caps);
+    fn->setTextureFormat(s->mTextureChoice.format);
+    KIOSK_LOG_INFO(kTag, "imagery textures: %s (%s)",
+                   io::textureFormatName(s->mTextureChoice.format),
+                   s->mTextureChoice.reason.c_str());
     // Test hook (atomic-step tests): a slow disk, in milliseconds per tile.
     if (const char* delay = std::getenv("GEOKIOSK_TEST_LOAD_DELAY_MS"))
         fn->setArtificialDelay(std::atof(delay) / 1000.0, s->testDelayedStore());
@@ -244,6 +250,13 @@ void TerrainScene::uploadPayload(terrain::TileHandle handle, terrain::TilePayloa
         slot.texture = render::makeRgbaTexture(payload.image->width, payload.image->height,
                                                payload.image->rgba.data(), true);
         payload.image->rgba = {};
+    } else if (payload.compressed) {
+        bytes = std::max<std::size_t>(
+            compressedTextureBytes(*payload.compressed, mTextureChoice.software), 1);
+        if (!mCache->reserveGpu(handle, bytes)) return;
+        slot.texture = render::makeCompressedTexture(*payload.compressed);
+        slot.compressed = true;
+        payload.compressed->blocks = {};
     } else if (payload.raster) {
         const auto& r = *payload.raster;
         // RG16F (value, validity), or RGBA16F for a derived product's tile (4 channels).
@@ -279,7 +292,8 @@ void TerrainScene::drainCompletions() {
         }
         if (p.status == terrain::TilePayload::Status::Failed) noteFailure(p);
         // A bad stored mesh or TIN: drawn from the posts / as the grid, said once per tile.
-        if (p.diagnostics.has("STORE_MESH_CORRUPT") || p.diagnostics.has("STORE_TIN_CORRUPT"))
+        if (p.diagnostics.has("STORE_MESH_CORRUPT") || p.diagnostics.has("STORE_TIN_CORRUPT") ||
+            p.diagnostics.has("STORE_TEXTURE_CORRUPT"))
             KIOSK_LOG_WARN(kTag, "%s", p.diagnostics.format().c_str());
         const terrain::TileKey key = p.key;
         const std::size_t cpu = p.byteSize();

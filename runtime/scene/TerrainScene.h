@@ -24,6 +24,7 @@
 #include "runtime/render/WarpedGridRenderer.h"
 #include "runtime/scene/CacheBudgets.h"
 #include "runtime/scene/Playback.h"
+#include "runtime/scene/TextureChoice.h"
 #include "runtime/terrain/MeshCells.h"
 #include "runtime/terrain/MeshPosts.h"
 #include "runtime/terrain/TilePayload.h"
@@ -98,6 +99,7 @@ struct SceneFrameInfo {
 struct SceneCacheUsage {
     std::uint64_t cpuTiles = 0;     ///< CPU payloads (budget terrain.cache_bytes)
     std::uint64_t gpuTextures = 0;  ///< uploaded imagery / raster textures
+    std::uint64_t gpuTexturesCompressed = 0;  ///< of which imagery uploaded as GPU blocks
     std::uint64_t gpuMeshes = 0;    ///< uploaded terrain meshes
     std::uint32_t loaderQueue = 0;  ///< requests waiting for the loader thread
     std::uint64_t cpuBudget = 0;    ///< budget of cpuTiles now
@@ -241,6 +243,8 @@ public:
      */
     void setOcclusionCulling(bool on);
     bool occlusionCulling() const noexcept { return mOcclusionOn; }
+    /** @brief The block format imagery is uploaded in (terrain.textureCompression, the context). */
+    const TextureChoice& textureChoice() const noexcept { return mTextureChoice; }
 
 private:
     TerrainScene() = default;
@@ -249,6 +253,7 @@ private:
         gl::Texture texture;
         std::size_t bytes = 0;
         int postsX = 0, postsY = 0;  ///< raster textures: size in posts
+        bool compressed = false;     ///< imagery uploaded as stored GPU blocks
     };
     /** @brief One composite layer of the stack and where its textures come from. */
     struct StackLayer {
@@ -428,6 +433,7 @@ private:
     /** @brief World box (z as drawn) of what tile t draws; false: draw it untested. */
     bool occlusionBox(const terrain::DrawTile& t, math::Aabb& box, double& postSpacing) const;
     bool mOcclusionOn = false;
+    TextureChoice mTextureChoice;  ///< imagery upload format (TextureChoice.h)
     std::unique_ptr<render::OcclusionQueries> mOcclusionQueries;
     std::vector<std::size_t> mOcclusionRounds;  ///< draw-order positions where batches start
     std::size_t mNextOcclusionRound = 0;

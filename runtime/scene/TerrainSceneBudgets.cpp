@@ -24,17 +24,26 @@ void TerrainScene::sizeBudgetsToView() {
 
 std::vector<std::pair<std::string, double>> TerrainScene::budgets() const {
     const terrain::CacheBudget& b = mCache->budget();
+    const SceneCacheUsage u = cacheUsage();
     return {{"cache_cpu_bytes", double(b.cpuBytes)},
             {"cache_gpu_bytes", double(b.gpuBytes)},
             {"cache_cpu_sized_to_view", mAutoCpu ? 1.0 : 0.0},
             {"cache_gpu_sized_to_view", mAutoGpu ? 1.0 : 0.0},
             {"view_working_set_cpu_bytes", double(mViewCpuHigh)},
             {"view_working_set_gpu_bytes", double(mViewGpuHigh)},
+            // Decoded tiles between loader and upload: the bound and the most held at once.
+            {"loader_max_bytes_in_flight", double(loader::LoaderOptions{}.maxBytesInFlight)},
+            {"loader_held_bytes_high", double(mLoader ? mLoader->counters().heldBytesHigh : 0)},
             {"sequence_prefetch_bytes", double(mAheadBytes)},
             {"upload_bytes_per_frame", double(mBudget.bytesPerFrame())},
             {"upload_ms_per_frame", mBudget.msPerFrame()},
             {"loader_max_in_flight", double(loader::LoaderOptions{}.maxInFlight)},
-            {"cache_slots", double(mCache->capacity())}};
+            {"cache_slots", double(mCache->capacity())},
+            // Resident now; compressed: imagery uploaded as stored GPU blocks (§11 of terrain.md)
+            {"gpu_texture_bytes", double(u.gpuTextures)},
+            {"gpu_texture_bytes_compressed", double(u.gpuTexturesCompressed)},
+            {"texture_compression_astc",
+             mTextureChoice.format == io::TextureFormat::Astc4x4 ? 1.0 : 0.0}};
 }
 
 }  // namespace kiosk::scene

@@ -13,6 +13,7 @@ SceneCacheUsage TerrainScene::cacheUsage() const {
             u.gpuMeshes += slot.bytes;
         else if (slot.texture)
             u.gpuTextures += slot.bytes;
+        if (slot.texture && slot.compressed) u.gpuTexturesCompressed += slot.bytes;
     }
     u.loaderQueue = mLoader ? mLoader->queued() : 0;
     u.cpuBudget = mCache->budget().cpuBytes;

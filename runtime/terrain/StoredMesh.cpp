@@ -217,6 +217,12 @@ Diagnostics StoredMeshBuilder::derive(const io::QuantizedMesh& stored, int tier,
     extract(0, 0, n, n, 0, n);
     extract(n, n, 0, 0, n, 0);
     mFinisher.finish(out, mSurfacePost, skirtDepth);
+    // The reserve was tier 0's size; a coarse tier keeps a fraction of it, and the payload waits
+    // in the loader's ring and the cache until uploaded: give the rest back (one small copy).
+    if (out.vertices.capacity() > out.vertices.size() + out.vertices.size() / 4)
+        out.vertices.shrink_to_fit();
+    if (out.indices.capacity() > out.indices.size() + out.indices.size() / 4)
+        out.indices.shrink_to_fit();
     mStored = nullptr;
     mOut = nullptr;
     return d;

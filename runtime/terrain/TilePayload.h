@@ -2,6 +2,7 @@
 
 #include "runtime/core/Diagnostics.h"
 #include "runtime/io/StoreTypes.h"
+#include "runtime/io/TextureBlocks.h"
 #include "runtime/terrain/RtinMesher.h"
 #include "runtime/terrain/TileCache.h"
 #include "runtime/terrain/TileKey.h"
@@ -14,9 +15,9 @@ namespace kiosk::terrain {
 
 /**
  * @brief What the loader produces for one TileKey and the cache holds (CPU side).
- * Exactly one of mesh / image / raster is set for Ready payloads. Absent: the store has no such
- * tile (draw nothing / neutral, do not request again). Failed: corrupt or unreadable tile
- * (diagnostics name it); treated like Absent by the selector so it is not re-requested.
+ * Exactly one of mesh / image / compressed / raster is set for Ready payloads. Absent: the store
+ * has no such tile (draw nothing / neutral, do not request again). Failed: corrupt or unreadable
+ * tile (diagnostics name it); treated like Absent by the selector so it is not re-requested.
  */
 struct TilePayload {
     enum class Status { Ready, Absent, Failed };
@@ -25,6 +26,8 @@ struct TilePayload {
     Status status = Status::Ready;
     std::optional<TileMesh> mesh;          ///< elevation layers
     std::optional<io::ImageTile> image;    ///< imagery layers
+    /** @brief Imagery layers as GPU blocks stored at import (instead of `image`). */
+    std::optional<io::CompressedImage> compressed;
     std::optional<io::RasterTile> raster;  ///< sequence frames (data values for a colour LUT)
     std::optional<io::TileStats> stats;    ///< elevation tiles: feed TileStatsTable
     Diagnostics diagnostics;
@@ -34,6 +37,7 @@ struct TilePayload {
         std::size_t b = sizeof(TilePayload);
         if (mesh) b += mesh->byteSize();
         if (image) b += image->rgba.size();
+        if (compressed) b += compressed->blocks.size();
         if (raster) b += raster->values.size() * sizeof(float);
         return b;
     }

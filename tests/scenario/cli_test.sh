@@ -70,6 +70,9 @@ if [[ -f data/generated/rainier.gpkg ]]; then
     if "$GK" info "$tmp/n.gpkg" 2>&1 | grep -q "relief_normals \[imagery\]"; then
         echo "ok:   info lists the normal map"; pass=$((pass + 1))
     else echo "FAIL: info does not list relief_normals"; fail=$((fail + 1)); fi
+    # GPU texture blocks (issue 20): a data layer is refused, the store untouched; usage exit 2.
+    expect 1 "never lossy-compressed" "$GK" import textures --store "$tmp/n.gpkg" --layers elevation
+    expect 2 "--quality wants fast" "$GK" import textures --store "$tmp/n.gpkg" --quality best
 fi
 # Everything shipped validates.
 expect 0 "" "$GK" validate $DEMO

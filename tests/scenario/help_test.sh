@@ -34,6 +34,7 @@ for flag in --help -h; do
     check_help import topographic $flag
     check_help import breaklines $flag
     check_help import model-mesh $flag
+    check_help import textures $flag
 done
 # --help wins over other (even wrong) arguments, as with GNU tools.
 check_help render scenarios/none.json --help

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <map>
@@ -323,6 +324,104 @@ TEST(TileLoader, ShutdownJoinsWithPendingWork) {
     EXPECT_LT(rec.snapshot().size(), 1000u);
     EXPECT_TRUE(rec.started);
     EXPECT_TRUE(rec.stopping);
+}
+
+// The completion ring bounded by bytes (LoaderOptions::maxBytesInFlight, issue 14): however far
+// the render thread falls behind, decoded-but-not-taken payloads stay under the bound plus one.
+
+/** @brief Every tile decodes to a raster of `floats` values; counts its loads. */
+class SizedLoad final : public LoadFunction {
+public:
+    SizedLoad(std::size_t floats, std::atomic<int>& loads) : mFloats(floats), mLoads(loads) {}
+    TilePayload load(const LoadRequest&) override {
+        ++mLoads;
+        TilePayload p;
+        p.raster = io::RasterTile{};
+        p.raster->values.assign(mFloats, 1.0f);
+        return p;
+    }
+
+private:
+    std::size_t mFloats;
+    std::atomic<int>& mLoads;
+};
+
+constexpr std::size_t kMiB = std::size_t(1) << 20;
+
+// Waits until `loads` stops moving (the loader idles on its bound) and returns it.
+int settledLoads(const std::atomic<int>& loads) {
+    int last = -1;
+    for (int i = 0; i < 100 && loads.load() != last; ++i) {
+        last = loads.load();
+        std::this_thread::sleep_for(30ms);
+    }
+    return loads.load();
+}
+
+TEST(TileLoaderBytes, RingStopsAtTheByteBoundNotTheCount) {
+    std::atomic<int> loads{0};
+    LoaderOptions o;
+    o.maxInFlight = 8;
+    o.maxBytesInFlight = 2 * kMiB;
+    TileLoader loader(o, std::make_unique<SizedLoad>(kMiB / sizeof(float), loads));  // 1 MiB each
+    for (int i = 0; i < 10; ++i) loader.request(key(i), double(10 - i));
+    loader.submit();
+    // Two 1 MiB payloads (plus their headers) reach 2 MiB: no third load while nothing is taken.
+    EXPECT_EQ(settledLoads(loads), 2);
+    EXPECT_EQ(loader.inFlight(), 2u);
+    EXPECT_GE(loader.heldBytes(), 2 * kMiB);
+    EXPECT_GT(loader.counters().waitsForBytes, 0u);
+    // Taking one makes room for one more.
+    LoadResult r;
+    ASSERT_TRUE(loader.tryPop(r));
+    EXPECT_EQ(settledLoads(loads), 3);
+    // Drain the rest: every request is still served, one bound's worth at a time.
+    int taken = 1;
+    const auto end = std::chrono::steady_clock::now() + 5s;
+    while (taken < 10 && std::chrono::steady_clock::now() < end) {
+        if (loader.tryPop(r))
+            ++taken;
+        else
+            std::this_thread::sleep_for(1ms);
+    }
+    EXPECT_EQ(taken, 10);
+    EXPECT_EQ(loader.heldBytes(), 0u);
+    // Never more than the bound plus one payload.
+    EXPECT_LE(loader.counters().heldBytesHigh, 3 * kMiB);
+}
+
+TEST(TileLoaderBytes, APayloadLargerThanTheBoundStillGoesThrough) {
+    std::atomic<int> loads{0};
+    LoaderOptions o;
+    o.maxInFlight = 8;
+    o.maxBytesInFlight = kMiB / 2;
+    TileLoader loader(o, std::make_unique<SizedLoad>(kMiB / sizeof(float), loads));
+    for (int i = 0; i < 3; ++i) loader.request(key(i), double(3 - i));
+    loader.submit();
+    EXPECT_EQ(settledLoads(loads), 1);  // one result at a time, never none
+    LoadResult r;
+    for (int taken = 0; taken < 3; ++taken) {
+        const auto end = std::chrono::steady_clock::now() + 5s;
+        bool got = false;
+        while (!got && std::chrono::steady_clock::now() < end) {
+            got = loader.tryPop(r);
+            if (!got) std::this_thread::sleep_for(1ms);
+        }
+        ASSERT_TRUE(got) << "result " << taken;
+        EXPECT_EQ(r.payload.raster->values.size(), kMiB / sizeof(float));
+    }
+}
+
+TEST(TileLoaderBytes, ZeroMeansCountOnly) {
+    std::atomic<int> loads{0};
+    LoaderOptions o;
+    o.maxInFlight = 4;
+    o.maxBytesInFlight = 0;
+    TileLoader loader(o, std::make_unique<SizedLoad>(kMiB / sizeof(float), loads));
+    for (int i = 0; i < 10; ++i) loader.request(key(i), double(10 - i));
+    loader.submit();
+    EXPECT_EQ(settledLoads(loads), 4);
+    EXPECT_EQ(loader.counters().waitsForBytes, 0u);
 }
 
 }  // namespace
