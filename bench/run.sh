@@ -68,6 +68,9 @@ JSON
 # its pixels, alternating passes: the upper bound of any impostor win on llvmpipe.
 "$BUILD/bench/bench-impostor" scenarios/demo/rainier.json --view 594500,5189560,1800,120,-8,40000
 "$BUILD/bench/bench-impostor" "$data/synthetic4k.json" --view 520480,5279520,2289,0,-6,12000
+# How many frames a far-terrain impostor stays within 1 px along the demo's camera tour.
+"$BUILD/bench/bench-impostor-validity" scenarios/demo/rainier.json --fps 30
+"$BUILD/bench/bench-impostor-validity" scenarios/demo/rainier.json --fps 60 --level 3
 # GPU texture compression (issue 20): ASTC 4x4 (astcenc) PSNR per imagery layer, encode cost,
 # and what llvmpipe holds per compressed texture vs RGBA8 (built when libastcenc-dev is there).
 if [[ -x "$BUILD/bench/bench-texcompress" ]]; then

@@ -1,4 +1,4 @@
-// Impostor measurement (issue 20, Wahl et al. 2004 §5; docs/terrain.md §11): could replacing
+// Impostor measurement (issue 20, Wahl et al. 2004 §5; docs/terrain.md §12): could replacing
 // far terrain by impostors (textured quads) win on llvmpipe? Per view and far distance D:
 //   all     frame time with every selected tile drawn,
 //   near    the same view with the far plane at D: the terrain beyond D is not drawn at all
