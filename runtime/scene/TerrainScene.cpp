@@ -170,9 +170,14 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
     // Imagery as stored GPU blocks where the context has the format (docs/terrain.md §11).
     s->mTextureChoice = chooseTextureFormat(scenario.terrain.textureCompression, caps);
     fn->setTextureFormat(s->mTextureChoice.format);
-    KIOSK_LOG_INFO(kTag, "imagery textures: %s (%s)",
-                   io::textureFormatName(s->mTextureChoice.format),
-                   s->mTextureChoice.reason.c_str());
+    // Said at info level only when it changes something or a forced choice could not be
+    // honoured: the uncompressed default is the quiet case (a valid store gives no message).
+    const bool compressed = s->mTextureChoice.format != io::TextureFormat::None;
+    const bool forcedButNot =
+        !compressed && scenario.terrain.textureCompression == config::TextureCompression::Astc;
+    log::write(compressed || forcedButNot ? log::Level::Info : log::Level::Debug, kTag,
+               "imagery textures: %s (%s)", io::textureFormatName(s->mTextureChoice.format),
+               s->mTextureChoice.reason.c_str());
     // Test hook (atomic-step tests): a slow disk, in milliseconds per tile.
     if (const char* delay = std::getenv("GEOKIOSK_TEST_LOAD_DELAY_MS"))
         fn->setArtificialDelay(std::atof(delay) / 1000.0, s->testDelayedStore());
