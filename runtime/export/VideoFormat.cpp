@@ -33,7 +33,7 @@ int defaultCrf(VideoFormat f) noexcept {
 
 const char* defaultPreset() noexcept {
     // llvmpipe keeps both cores busy drawing, so the encoder's CPU time is the export's cost:
-    // bench-export measured ultrafast at 6 % of the 1080p frame and veryfast at 27-34 % (files
+    // bench-export measured ultrafast at 6-12 % of the 1080p frame and veryfast at 27-34 % (files
     // about 3x smaller); the goal is < 10 %. Smaller files: `--preset veryfast`.
     return "ultrafast";
 }
