@@ -53,13 +53,7 @@ PassTime pass(app::Session& s, gl::RenderTarget& rt, const std::vector<double>& 
     std::optional<app::FrameOutput> output;
     if (kind == Output::Png) output.emplace(app::FrameOutput::folder(out));
     if (kind == Output::Video || kind == Output::VideoPrevious) {
-        video::VideoOptions o = vo;
-        if (kind == Output::VideoPrevious) {
-            o.path.replace_filename("previous" + o.path.extension().string());
-            o.preset = "veryfast";
-            o.crf = 15;
-        }
-        auto v = app::FrameOutput::video(o);
+        auto v = app::FrameOutput::video(vo);
         if (!v) {
             std::fprintf(stderr, "%s\n", v.diagnostics.format().c_str());
             std::exit(1);
@@ -175,6 +169,12 @@ int main(int argc, char** argv) {
     vo.height = height;
     vo.fps = fps;
 
+    // The previous default (libx264 veryfast, CRF 15): the same-run baseline of the preset.
+    video::VideoOptions previous = vo;
+    previous.path = dir / "previous.mp4";
+    previous.preset = "veryfast";
+    previous.crf = 15;
+
     const double loadBefore = loadAverage();
     pass(s, *rt, times, Output::None, {}, vo);  // warm-up: every pass then finds the same tiles
     // --passes word, reported name, what is done after drawing each frame.
@@ -191,12 +191,13 @@ int main(int argc, char** argv) {
             if (("," + passes + ",").find(std::string(",") + word + ",") == std::string::npos)
                 continue;
             if (kind == Output::VideoPrevious && vo.format != video::VideoFormat::H264Mp4) continue;
-            const PassTime p = pass(s, *rt, times, kind, dir / "png", vo);
+            const auto& options = kind == Output::VideoPrevious ? previous : vo;
+            const PassTime p = pass(s, *rt, times, kind, dir / "png", options);
             auto it = best.find(name);
             if (it == best.end() || p.wall < it->second.wall) best[name] = p;
             if (kind == Output::Video) bytes = std::filesystem::file_size(vo.path);
             if (kind == Output::VideoPrevious)
-                previousBytes = std::filesystem::file_size(dir / "previous.mp4");
+                previousBytes = std::filesystem::file_size(previous.path);
         }
     const double loadAfter = loadAverage();
     std::error_code ec;

@@ -88,10 +88,8 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         if (!format || *format != video::VideoFormat::H264Mp4)
             return usage("--preset applies to .mp4 (libx264)");
         if (!video::isX264Preset(*p))
-            return usage(
-                "--preset wants one of ultrafast, superfast, veryfast, faster, fast, "
-                "medium, slow, slower, veryslow, got '" +
-                *p + "'");
+            return usage("--preset wants one of " + video::x264PresetNames() + ", got '" + *p +
+                         "'");
         preset = *p;
     }
     int width = 1280, height = 720;

@@ -52,8 +52,10 @@ struct VideoOptions {
 int defaultCrf(VideoFormat f) noexcept;
 /** @brief The libx264 preset used when `--preset` is not given. */
 const char* defaultPreset() noexcept;
-/** @brief Whether @p name is one of libx264's presets (ultrafast .. placebo). */
+/** @brief Whether @p name is one of libx264's presets (ultrafast .. veryslow). */
 bool isX264Preset(std::string_view name) noexcept;
+/** @brief The presets isX264Preset() accepts, fastest first, comma-separated (for messages). */
+std::string x264PresetNames();
 /** @brief Valid `--crf` range of a lossy format (libx264 0..51, libvpx-vp9 0..63). */
 int maxCrf(VideoFormat f) noexcept;
 

@@ -38,13 +38,21 @@ const char* defaultPreset() noexcept {
     return "ultrafast";
 }
 
+namespace {
+constexpr std::string_view kX264Presets[] = {
+    "ultrafast", "superfast", "veryfast", "faster", "fast", "medium", "slow", "slower", "veryslow"};
+}  // namespace
+
 bool isX264Preset(std::string_view name) noexcept {
-    static constexpr std::string_view presets[] = {"ultrafast", "superfast", "veryfast",
-                                                   "faster",    "fast",      "medium",
-                                                   "slow",      "slower",    "veryslow"};
-    for (auto p : presets)
+    for (auto p : kX264Presets)
         if (p == name) return true;
     return false;
+}
+
+std::string x264PresetNames() {
+    std::string names;
+    for (auto p : kX264Presets) names += (names.empty() ? "" : ", ") + std::string(p);
+    return names;
 }
 
 int maxCrf(VideoFormat f) noexcept {
