@@ -1,5 +1,10 @@
 #pragma once
 
+#include "runtime/core/Diagnostics.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -44,5 +49,29 @@ public:
 private:
     std::filesystem::path mPath;
 };
+
+/**
+ * @brief A scenario mistake is reported as exactly one error, on one line, with the expected
+ * code, JSON pointer and a message containing `message`.
+ */
+inline ::testing::AssertionResult isOneErrorLine(const Diagnostics& d, const std::string& code,
+                                                 const std::string& where,
+                                                 const std::string& message) {
+    const auto& items = d.items();
+    const auto errors = std::count_if(items.begin(), items.end(), [](const Diagnostic& i) {
+        return i.severity == Severity::Error;
+    });
+    if (errors != 1)
+        return ::testing::AssertionFailure() << errors << " errors, want 1:\n" << d.format();
+    const Diagnostic* e = d.firstError();
+    if (e->code != code || e->where != where)
+        return ::testing::AssertionFailure()
+               << "want " << code << " at " << where << ", got: " << e->format();
+    if (e->format().find(message) == std::string::npos)
+        return ::testing::AssertionFailure() << "no \"" << message << "\" in: " << e->format();
+    if (e->format().find('\n') != std::string::npos)
+        return ::testing::AssertionFailure() << "not one line: " << e->format();
+    return ::testing::AssertionSuccess();
+}
 
 }  // namespace kiosk::test
