@@ -144,7 +144,10 @@ std::optional<std::int64_t> readBytes(Ctx& c, const json& j, const std::string& 
 class Obj {
 public:
     Obj(Ctx& c, const json& j, std::string ptr, const char* kind)
-        : mC(c), mJ(j), mPtr(std::move(ptr)), mKeys(propertyTable().at(kind)) {
+        : Obj(c, j, std::move(ptr), propertyTable().at(kind)) {}
+    /** @brief An object whose properties are `keys` (which must outlive it). */
+    Obj(Ctx& c, const json& j, std::string ptr, const std::vector<std::string>& keys)
+        : mC(c), mJ(j), mPtr(std::move(ptr)), mKeys(keys) {
         if (!j.is_object()) {
             mC.error("SCENARIO_TYPE", mPtr, "expected object, got " + typeName(j));
             mValid = false;

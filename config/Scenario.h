@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -86,6 +87,8 @@ enum class LayerKind {
     Duration,
     Hazard,
     Difference,  ///< A - B of two scalar layers of the stack (layers/difference/)
+    /// A kind registered at run time (layers::Registry::add), named by Layer::kindName.
+    Registered,
 };
 /** @brief The kinds computed from a sequence's stored steps while replaying. */
 inline bool isProductKind(LayerKind k) noexcept {
@@ -129,9 +132,21 @@ struct ProductOptions {
     }
 };
 
+/**
+ * @brief A kind's own options, as its scenario reader read them (config/KindSection.h); a
+ * registered kind derives its own and finds them again with dynamic_cast in plan().
+ */
+struct KindOptions {
+    virtual ~KindOptions() = default;
+};
+
 struct Layer {
     std::string id;
     LayerKind kind = LayerKind::Thematic;
+    /** @brief The kind as the scenario names it: the layers registry's key ("" = `kind`'s). */
+    std::string kindName;
+    /** @brief Options read by the kind's own reader beyond the fields below (may be null). */
+    std::shared_ptr<const KindOptions> options;
     SourceRef source;
     std::string transfer;  ///< transfer function name (data, sequence)
     Operation operation;

@@ -128,6 +128,7 @@ const std::map<std::string, std::vector<std::string>>& acceptedProperties() {
 }
 
 const char* layerKindName(LayerKind k) noexcept {
+    if (k == LayerKind::Registered) return "registered";  // its name: Layer::kindName
     for (const auto& [name, kind] : kLayerKinds)
         if (kind == k) return name.c_str();
     return "thematic";

@@ -24,8 +24,6 @@ private:
     void terrain(const json& j);
     std::optional<SourceRef> source(const json& j, const std::string& ptr);
     void layers(const json& arr);
-    /** @brief A product layer's "product" object (layers/products/ProductSection.cpp). */
-    void product(const Obj& layer, Layer& l);
     void transferFunctions(const json& j);
     void reemit(const Diagnostics& d, const std::string& ptr, const std::string& prefix);
     std::optional<TransferFunctionDef> transfer(const json& j, const std::string& ptr,

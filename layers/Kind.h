@@ -1,5 +1,6 @@
 #pragma once
 
+#include "config/KindSection.h"
 #include "config/Scenario.h"
 #include "layers/LayerShader.h"
 #include "runtime/anim/FrameBracket.h"
@@ -84,6 +85,12 @@ public:
         (void)layer, (void)plan;
         return {};
     }
+    /**
+     * @brief The kind's own scenario reader and schema fragment; Registry::add registers it
+     * under the kind's name so a scenario can name the kind. Null: the built-in kinds, whose
+     * sections config/KindSections.cpp registers (config reads scenarios without this library).
+     */
+    virtual std::shared_ptr<const config::KindSection> section() const { return nullptr; }
 };
 
 }  // namespace kiosk::layers

@@ -16,6 +16,7 @@
 namespace kiosk::layers {
 
 void Registry::add(std::string name, std::unique_ptr<Kind> kind) {
+    if (auto section = kind->section()) config::kindSections().add(name, std::move(section));
     mKinds[std::move(name)] = std::move(kind);
 }
 

@@ -16,7 +16,10 @@ namespace kiosk::layers {
  */
 class Registry {
 public:
-    /** @brief Register (or replace) the kind called `name`. */
+    /**
+     * @brief Register (or replace) the kind called `name`; with its section() a scenario can
+     * name it (`"kind": name`), read by that section.
+     */
     void add(std::string name, std::unique_ptr<Kind> kind);
     const Kind* find(std::string_view name) const;
 

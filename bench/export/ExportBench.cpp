@@ -9,10 +9,13 @@
 // busy, so the encoder's CPU time is what the export costs. The load average is reported with
 // the figures, since other processes on the machine move every wall-time figure.
 // For .mp4 the pass `previous` exports the same frames with the previous default (libx264
-// preset veryfast, CRF 15): the baseline of the preset change, same run.
+// preset veryfast, CRF 15): the baseline of the preset change, same run. The pass
+// `samepriority` exports with the encoder's threads at the render thread's priority (the code
+// path before kEncoderNice): the baseline of the priority change, same run.
 //
 // usage: bench-export [SCENARIO] [--size 1920x1080] [--frames N] [--fps 30]
-//                     [--format mp4|mkv|webm] [--rounds R] [--passes render,png,video,previous]
+//                     [--format mp4|mkv|webm] [--rounds R] [--passes
+//                     render,png,video,samepriority,previous]
 // (--passes may also name rgba: drawing plus the RGBA readback, writing nothing: what the
 // readback alone costs.)
 #include "runtime/anim/ScenarioClock.h"
@@ -108,7 +111,7 @@ double loadAverage() {
 
 int main(int argc, char** argv) {
     std::string scenario = "scenarios/demo/rainier.json", format = "mp4",
-                passes = "render,png,video,previous";
+                passes = "render,png,video,samepriority,previous";
     int width = 1920, height = 1080, frames = 60, rounds = 2;
     double fps = 30;
     for (int i = 1; i < argc; ++i) {
@@ -135,7 +138,7 @@ int main(int argc, char** argv) {
             std::fprintf(stderr,
                          "usage: bench-export [SCENARIO] [--size WxH] [--frames N] [--fps F] "
                          "[--format mp4|mkv|webm] [--rounds R] "
-                         "[--passes render,png,video,previous]\n");
+                         "[--passes render,png,video,samepriority,previous]\n");
             return 2;
         }
     }
@@ -174,28 +177,32 @@ int main(int argc, char** argv) {
     previous.path = dir / "previous.mp4";
     previous.preset = "veryfast";
     previous.crf = 15;
+    video::VideoOptions samePriority = vo;
+    samePriority.path = dir / "same-priority.mp4";
+    samePriority.encoderNice = 0;
 
     const double loadBefore = loadAverage();
     pass(s, *rt, times, Output::None, {}, vo);  // warm-up: every pass then finds the same tiles
     // --passes word, reported name, what is done after drawing each frame.
-    const std::tuple<const char*, const char*, Output> kinds[] = {
-        {"render", "render_only", Output::None},
-        {"rgba", "readback_rgba", Output::Rgba},
-        {"png", "render_png", Output::Png},
-        {"video", "export", Output::Video},
-        {"previous", "export_previous", Output::VideoPrevious}};
+    const std::tuple<const char*, const char*, Output, const video::VideoOptions*> kinds[] = {
+        {"render", "render_only", Output::None, &vo},
+        {"rgba", "readback_rgba", Output::Rgba, &vo},
+        {"png", "render_png", Output::Png, &vo},
+        {"video", "export", Output::Video, &vo},
+        {"samepriority", "export_same_priority", Output::Video, &samePriority},
+        {"previous", "export_previous", Output::VideoPrevious, &previous}};
     std::map<std::string, PassTime> best;
     std::uintmax_t bytes = 0, previousBytes = 0;
     for (int r = 0; r < rounds; ++r)
-        for (const auto& [word, name, kind] : kinds) {
+        for (const auto& [word, name, kind, options] : kinds) {
             if (("," + passes + ",").find(std::string(",") + word + ",") == std::string::npos)
                 continue;
             if (kind == Output::VideoPrevious && vo.format != video::VideoFormat::H264Mp4) continue;
-            const auto& options = kind == Output::VideoPrevious ? previous : vo;
-            const PassTime p = pass(s, *rt, times, kind, dir / "png", options);
+            const PassTime p = pass(s, *rt, times, kind, dir / "png", *options);
             auto it = best.find(name);
             if (it == best.end() || p.wall < it->second.wall) best[name] = p;
-            if (kind == Output::Video) bytes = std::filesystem::file_size(vo.path);
+            if (options == &vo && kind == Output::Video)
+                bytes = std::filesystem::file_size(vo.path);
             if (kind == Output::VideoPrevious)
                 previousBytes = std::filesystem::file_size(previous.path);
         }
@@ -224,6 +231,9 @@ int main(int argc, char** argv) {
         const double render = best["render_only"].wall;
         if (best.count("export"))
             j["export_overhead_pct"] = (best["export"].wall - render) / render * 100.0;
+        if (best.count("export_same_priority"))
+            j["export_same_priority_overhead_pct"] =
+                (best["export_same_priority"].wall - render) / render * 100.0;
         if (best.count("export_previous"))
             j["export_previous_overhead_pct"] =
                 (best["export_previous"].wall - render) / render * 100.0;

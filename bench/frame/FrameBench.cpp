@@ -8,9 +8,10 @@
 // the full-resolution baseline runs (that baseline dominates the process's final peak).
 //
 // usage: bench-frame SCENARIO [--sizes 1280x720,1920x1080] [--frames N] [--no-fullres]
-//                             [--warmup-timeout S] [--target-fps N]
+//                             [--warmup-timeout S] [--target-fps N] [--settle-each]
 // --target-fps also flies the flight under play's frame-rate governor and reports what it
-// settles on.
+// settles on. --settle-each: every view fully resident before it is timed, so two runs draw
+// the same tiles (A/B comparisons of the drawing on a loaded machine, docs/performance.md §6).
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -63,7 +64,7 @@ math::Viewpoint flightView(const app::Session& s, int i, int n) {
 }
 
 Flight fly(app::Session& s, int width, int height, int frames, bool settleFirst,
-           anim::FrameGovernor* governor = nullptr) {
+           anim::FrameGovernor* governor = nullptr, bool settleEach = false) {
     Flight f;
     RealClock clock;
     const double span = s.endTime() - s.startTime();
@@ -71,8 +72,10 @@ Flight fly(app::Session& s, int width, int height, int frames, bool settleFirst,
         const double t = s.startTime() + (span > 0 ? span * double(i) / double(frames) : 0.0);
         const math::Camera cam = app::makeCamera(flightView(s, i, frames), s.terrain().bounds(),
                                                  width, height, 45.0);
-        if (i == 0 && settleFirst) {
+        if ((i == 0 && settleFirst) || settleEach) {
             // Warm-up: the first view fully resident, as a kiosk is after start-up.
+            // (One frame first: settled() speaks of the last frame's view.)
+            s.drawFrame(cam, t, width, height);
             for (int k = 0; k < 20000 && !s.terrain().settled(); ++k) s.drawFrame(cam, t, width, height);
             // Drain the warm-up frames queued in llvmpipe (nothing waited for them): without
             // this the first timed frame paid for all of them (a 1-3 s "spike" at p99).
@@ -112,7 +115,7 @@ double mean(const std::vector<double>& v) {
 int main(int argc, char** argv) {
     if (argc < 2) {
         std::fprintf(stderr, "usage: bench-frame SCENARIO [--sizes WxH,...] [--frames N] [--no-fullres] "
-                             "[--target-fps N]\n");
+                             "[--target-fps N] [--settle-each]\n");
         return 2;
     }
     std::string scenario = argv[1];
@@ -120,11 +123,13 @@ int main(int argc, char** argv) {
     int frames = 120;
     bool fullres = true;
     double targetFps = 0;
+    bool settleEach = false;
     for (int i = 2; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) frames = std::max(2, std::atoi(argv[++i]));
         else if (!std::strcmp(argv[i], "--target-fps") && i + 1 < argc)
             targetFps = std::atof(argv[++i]);
         else if (!std::strcmp(argv[i], "--no-fullres")) fullres = false;
+        else if (!std::strcmp(argv[i], "--settle-each")) settleEach = true;
         else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
             sizes.clear();
             std::string list = argv[++i];
@@ -144,6 +149,7 @@ int main(int argc, char** argv) {
     out["scenario"] = scenario;
     out["renderer"] = caps->renderer;
     out["frames"] = frames;
+    out["settle_each"] = settleEach;
     for (auto [w, h] : sizes) {
         auto target = gl::RenderTarget::create(w, h);
         if (!target) return 3;
@@ -155,7 +161,7 @@ int main(int argc, char** argv) {
         }
         const std::size_t layers = (*session)->scenario().layers.size();
         const double rssOpen = bench::currentRssMb();
-        Flight lod = fly(**session, w, h, frames, true);
+        Flight lod = fly(**session, w, h, frames, true, nullptr, settleEach);
         nlohmann::json r;
         r["size"] = std::to_string(w) + "x" + std::to_string(h);
         r["frame_ms"] = {{"p50", app::percentile(lod.frameMs, 50)},

@@ -47,6 +47,11 @@ std::string DifferenceKind::plan(const config::Layer& layer, const StoreView&,
     return {};
 }
 
+std::string DifferenceKind::legendTitle(const config::Layer& layer, const SourcePlan&) const {
+    if (layer.operands.size() != 2) return {};
+    return "Difference " + layer.operands[0] + " - " + layer.operands[1];
+}
+
 std::shared_ptr<const LayerShader> DifferenceKind::shader(const SourcePlan&) const {
     static const auto piece = std::make_shared<DifferenceShader>();
     return piece;

@@ -17,6 +17,8 @@ public:
     std::string plan(const config::Layer& layer, const StoreView& store,
                      SourcePlan& out) const override;
     std::shared_ptr<const LayerShader> shader(const SourcePlan& plan) const override;
+    /** @brief "Difference A - B" (the operands' layer ids): the legend of a diverging function. */
+    std::string legendTitle(const config::Layer& layer, const SourcePlan& plan) const override;
 };
 
 }  // namespace kiosk::layers

@@ -1,7 +1,8 @@
 // The "product" object of the derived-product layers (maximum, arrival, duration, hazard):
 // which options each kind takes and what each requires (docs/products.md). Compiled into
-// kiosk_config (config/CMakeLists.txt): the scenario reader calls it for every layer.
-#include "config/ScenarioSections.h"
+// kiosk_config (config/CMakeLists.txt): every built-in kind's section reads it
+// (layers/SourcedSection.h), refusing it on the kinds that are not products.
+#include "layers/SourcedSection.h"
 
 namespace kiosk::config::reader {
 namespace {
@@ -10,33 +11,32 @@ const EnumTable<std::string> kTimeUnits = {{"h", "h"}, {"min", "min"}, {"s", "s"
 
 }  // namespace
 
-void Reader::product(const Obj& layer, Layer& l) {
+void productOptions(Ctx& c, const Obj& layer, Layer& l) {
     const LayerKind kind = l.kind;
     const json* j = layer.get("product");
     l.product.pointer = j ? layer.at("product") : l.pointer;
     if (!isProductKind(kind)) {
         if (j)
-            mC.error("SCENARIO_CONFLICT", layer.at("product"),
-                     std::string("\"product\" applies to the product kinds (maximum, arrival, "
-                                 "duration, hazard), not to a ") +
-                         layerKindName(kind) + " layer");
+            c.error("SCENARIO_CONFLICT", layer.at("product"),
+                    std::string("\"product\" applies to the product kinds (maximum, arrival, "
+                                "duration, hazard), not to a ") +
+                        layerKindName(kind) + " layer");
         return;
     }
     const bool thresholded = kind == LayerKind::Arrival || kind == LayerKind::Duration;
     if (!j) {
         if (thresholded)
-            mC.error(
-                "SCENARIO_MISSING", l.pointer,
-                std::string(kind == LayerKind::Arrival ? "an " : "a ") + layerKindName(kind) +
-                    " layer needs \"product\": {\"threshold\": ...} (in the sequence's units)");
+            c.error("SCENARIO_MISSING", l.pointer,
+                    std::string(kind == LayerKind::Arrival ? "an " : "a ") + layerKindName(kind) +
+                        " layer needs \"product\": {\"threshold\": ...} (in the sequence's units)");
         return;
     }
-    Obj o(mC, *j, layer.at("product"), "Product");
+    Obj o(c, *j, layer.at("product"), "Product");
     if (!o.valid()) return;
     auto only = [&](const char* key, bool allowed, const char* kinds) {
         if (o.has(key) && !allowed)
-            mC.error("SCENARIO_CONFLICT", o.at(key),
-                     std::string("\"") + key + "\" applies to " + kinds + " layers only");
+            c.error("SCENARIO_CONFLICT", o.at(key),
+                    std::string("\"") + key + "\" applies to " + kinds + " layers only");
     };
     only("threshold", thresholded, "arrival and duration");
     only("units", thresholded, "arrival and duration");

@@ -3,11 +3,16 @@
 #include "runtime/export/StreamModule.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <condition_variable>
 #include <deque>
+#include <future>
 #include <mutex>
+#include <pthread.h>
+#include <sys/resource.h>
 #include <thread>
+#include <unistd.h>
 
 namespace kiosk::video {
 
@@ -16,7 +21,8 @@ namespace kiosk::video {
  * the render thread fills a free one, the encoder thread converts, encodes and returns it.
  */
 struct VideoEncoder::Impl {
-    std::unique_ptr<EncoderStream> stream;  ///< geokiosk-av.so's AvStream (StreamModule.cpp)
+    using Opened = std::pair<bool, Diagnostics>;  ///< the stream's open, done on the worker
+    std::unique_ptr<EncoderStream> stream;        ///< geokiosk-av.so's AvStream (StreamModule.cpp)
     std::size_t frameBytes = 0;
     std::vector<std::vector<std::uint8_t>> pool;
     std::deque<std::size_t> freeSlots, ready;
@@ -30,7 +36,26 @@ struct VideoEncoder::Impl {
     std::int64_t encoded = 0;
     std::thread worker;
 
-    void run() {
+    /** On the worker, at its lower priority: the codec's threads, started by the open, inherit
+     * the worker's nice value. */
+    bool openStream(const VideoOptions& options, std::promise<Opened>& opened) {
+        pthread_setname_np(pthread_self(), kEncoderThreadName);
+        const int step = options.encoderNice;
+        // Relative to the process's own (a `nice`d batch export stays below the caller). Failing
+        // to lower the priority (a seccomp profile, say) costs speed, not correctness.
+        const auto self = static_cast<id_t>(gettid());
+        errno = 0;
+        const int current = getpriority(PRIO_PROCESS, self);
+        if (errno == 0) (void)setpriority(PRIO_PROCESS, self, std::min(19, current + step));
+        Diagnostics d;
+        const bool ok = stream->open(options, d);
+        if (!ok) stream->abandon();
+        opened.set_value({ok, d});
+        return ok;
+    }
+
+    void run(const VideoOptions& options, std::promise<Opened>& opened) {
+        if (!openStream(options, opened)) return;
         for (;;) {
             std::size_t slot = 0;
             {
@@ -67,10 +92,6 @@ Result<std::unique_ptr<VideoEncoder>> VideoEncoder::open(const VideoOptions& opt
     Diagnostics d;
     impl->stream = makeEncoderStream(d);
     if (!impl->stream) return d;
-    if (!impl->stream->open(options, d)) {
-        impl->stream->abandon();
-        return d;
-    }
     impl->frameBytes = std::size_t(options.width) * std::size_t(options.height) * 4;
     const int slots = std::max(1, options.queueFrames);
     impl->pool.resize(std::size_t(slots));
@@ -79,7 +100,16 @@ Result<std::unique_ptr<VideoEncoder>> VideoEncoder::open(const VideoOptions& opt
         impl->freeSlots.push_back(i);
     }
     Impl* raw = impl.get();
-    impl->worker = std::thread([raw] { raw->run(); });
+    std::promise<Impl::Opened> opened;
+    auto openResult = opened.get_future();
+    impl->worker =
+        std::thread([raw, options, p = std::move(opened)]() mutable { raw->run(options, p); });
+    const auto [ok, error] = openResult.get();
+    if (!ok) {
+        impl->worker.join();
+        impl->finished = true;  // nothing to finish: the stream was abandoned on the worker
+        return error;
+    }
     return std::unique_ptr<VideoEncoder>(new VideoEncoder(std::move(impl)));
 }
 

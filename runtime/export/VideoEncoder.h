@@ -32,6 +32,17 @@ struct VideoChapter {
     double end = 0;
 };
 
+/**
+ * @brief How much higher (lower priority) the nice value of the encoder thread, and of the
+ * threads the codec starts from it, is than the caller's. llvmpipe keeps both cores about 90 %
+ * busy while drawing a 1080p frame; at a lower priority the encoder runs in the core time the
+ * rasterizer leaves idle instead of preempting its threads, which the render thread then waits
+ * for (docs/performance.md §7 has the figures). Capped at 19.
+ */
+inline constexpr int kEncoderNice = 10;
+/** @brief The encoder thread's name (/proc/PID/task/TID/comm), for tools and the tests. */
+inline constexpr const char* kEncoderThreadName = "kiosk-encode";
+
 struct VideoOptions {
     std::filesystem::path path;
     VideoFormat format = VideoFormat::H264Mp4;
@@ -44,6 +55,8 @@ struct VideoOptions {
     /** @brief libx264 preset (H.264 only); empty: defaultPreset(). */
     std::string preset;
     std::vector<VideoChapter> chapters;
+    /** @brief Nice steps of the encoder's threads below the caller (kEncoderNice; 0: same). */
+    int encoderNice = kEncoderNice;
     /** @brief Frames that may wait for the encoder thread before acquire() blocks. */
     int queueFrames = 4;
 };

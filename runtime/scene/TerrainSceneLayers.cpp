@@ -106,7 +106,9 @@ void TerrainScene::buildLayerStack(std::vector<loader::LayerBinding>& bindings,
         comp.op = compositeOp(cl.operation.type);
         // The kind plans its sources (layers/) in the store the layer names; the scene serves
         // them whatever the kind.
-        const layers::Kind* kind = layers::registry().find(config::layerKindName(cl.kind));
+        const std::string kindName =
+            cl.kindName.empty() ? config::layerKindName(cl.kind) : cl.kindName;
+        const layers::Kind* kind = layers::registry().find(kindName);
         layers::SourcePlan plan;
         std::string problem;
         const int store = layerStore(
@@ -114,8 +116,7 @@ void TerrainScene::buildLayerStack(std::vector<loader::LayerBinding>& bindings,
         const std::filesystem::path storePath =
             store >= 0 ? mLayerStores[std::size_t(store)].path : mStorePath;
         if (store >= 0 && !kind) {
-            problem = std::string("no layer kind \"") + config::layerKindName(cl.kind) +
-                      "\" is registered";
+            problem = "no layer kind \"" + kindName + "\" is registered";
         } else if (store >= 0) {
             const io::StoreInfo& info = mLayerStores[std::size_t(store)].reader->info();
             layers::StoreView view{info, mElevation->name};

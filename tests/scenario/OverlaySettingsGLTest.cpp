@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -135,6 +136,60 @@ TEST_F(OverlaySettings, ProjectiveMappingTransferFunctionHasALegend) {
     EXPECT_GT(d.x0, kW / 2);
     EXPECT_GT(d.y0, kH / 2);
     EXPECT_GT(d.count, 2000);  // a panel, not a stray pixel
+}
+
+// A difference layer's own legend (overlays.legend.layer naming it, as the shipped difference
+// scenario does): a box bottom right whose colour bar shows the diverging function's swatches,
+// A < B (blue) left of A = B (white) left of A > B (red), titled by the kind ("Difference runA -
+// runB (m)") instead of the function's label.
+TEST_F(OverlaySettings, DifferenceLayerHasItsOwnLegend) {
+    const std::string scenario = "scenarios/demo/rainier-compare-difference.json";
+    const gl::Image with = frame(scenario, "flood", nullptr);
+    const gl::Image without =
+        frame(scenario, "flood", [](config::Scenario& s) { s.overlays.legend.enabled = false; });
+    const gl::Image byName =
+        frame(scenario, "flood", [](config::Scenario& s) { s.overlays.legend.layer.clear(); });
+    const DiffBox d = diff(without, with);
+    ASSERT_FALSE(d.empty()) << "the difference layer's legend is missing";
+    EXPECT_GT(d.x0, kW / 2);
+    EXPECT_GT(d.y0, kH / 2);
+    // The swatches: on the legend's row with the most blue pixels, the first blue, white and red
+    // pixels come in this order, each colour over at least 8 pixels.
+    auto kindOf = [&](int x, int y) {
+        const auto* p = with.pixel(x, y);
+        const auto* q = without.pixel(x, y);
+        if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) return 0;  // not the legend
+        const int r = p[0], g = p[1], b = p[2];
+        if (b > r + 60) return 1;                                             // A < B
+        if (r > 170 && g > 170 && b > 170 && std::abs(r - b) < 40) return 2;  // A ~ B
+        if (r > b + 60 && r > g + 60) return 3;                               // A > B
+        return 0;
+    };
+    int barRow = -1, mostBlue = 0;
+    for (int y = d.y0; y <= d.y1; ++y) {
+        int blue = 0;
+        for (int x = d.x0; x <= d.x1; ++x) blue += kindOf(x, y) == 1;
+        if (blue > mostBlue) mostBlue = blue, barRow = y;
+    }
+    ASSERT_GE(barRow, 0) << "no blue swatch in the legend";
+    int first[4] = {-1, -1, -1, -1}, count[4] = {0, 0, 0, 0};
+    for (int x = d.x0; x <= d.x1; ++x) {
+        const int k = kindOf(x, barRow);
+        if (first[k] < 0) first[k] = x;
+        ++count[k];
+    }
+    EXPECT_GE(count[1], 8);
+    EXPECT_GE(count[2], 8);
+    EXPECT_GE(count[3], 8);
+    EXPECT_LT(first[1], first[2]);
+    EXPECT_LT(first[2], first[3]);
+    // The kind's title: not the function's label, exactly the legend titled by hand so.
+    EXPECT_FALSE(diff(byName, with).empty()) << "the legend is titled by the function's label";
+    const gl::Image titled = frame(scenario, "flood", [](config::Scenario& s) {
+        s.overlays.legend.layer.clear();
+        s.overlays.legend.title = "Difference runA - runB";
+    });
+    EXPECT_TRUE(diff(titled, with).empty());
 }
 
 // A transfer function without "units" shows the units the store records for the data it

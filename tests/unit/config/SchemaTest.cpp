@@ -1,6 +1,7 @@
 // The JSON Schema (for editors) and the C++ reader (the authority) must not drift: same object
 // kinds, same properties; and the schema must be complete enough for VS Code completion (every
 // property described, unknown properties rejected).
+#include "config/KindSection.h"
 #include "config/ScenarioReader.h"
 #include "tests/unit/config/ConfigTestSupport.h"
 
@@ -91,6 +92,20 @@ TEST(ScenarioSchema, EveryPropertyDescribedAndClosed) {
     int properties = 0;
     checkNode(schema, "", properties);
     EXPECT_GT(properties, 120);
+}
+
+// The layer kinds the schema lists are those whose scenario sections config registers
+// (config/KindSections.cpp), in the same order; composing the schema with the registered kinds'
+// fragments adds nothing to the built-in ones.
+TEST(ScenarioSchema, LayerKindsAreTheKindsWithASection) {
+    const json schema = loadSchema();
+    ASSERT_TRUE(schema.is_object());
+    std::vector<std::string> listed;
+    for (const auto& k : schema["$defs"]["Layer"]["properties"]["kind"]["enum"])
+        listed.push_back(k.get<std::string>());
+    EXPECT_EQ(listed, kindSections().names());
+    EXPECT_EQ(json::parse(scenarioSchema(test::slurp("config/schema/scenario.schema.json"))),
+              schema);
 }
 
 // Enumerations in the schema are accepted by the reader (a value from the schema's enum put in
