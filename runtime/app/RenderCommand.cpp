@@ -33,6 +33,8 @@ constexpr const char* kTag = "render";
 constexpr double kPauseHoldSeconds = 2.0;
 /** How long one frame may wait for its tiles before it is drawn with what is resident. */
 constexpr double kSettleTimeoutSeconds = 120.0;
+/** A warm-up draw that found no tile resident is tried again after this long. */
+constexpr double kWarmUpRetrySeconds = 0.05;
 
 constexpr const char* kUsage =
     "usage: geokiosk render SCENARIO --out OUT [--time T | "
@@ -45,6 +47,21 @@ constexpr const char* kUsage =
 int usage(const std::string& message) {
     std::fprintf(stderr, "geokiosk render: %s\n%s", message.c_str(), kUsage);
     return kExitUsage;
+}
+
+/**
+ * @brief While the loader decodes the first view's tiles the render thread would only wait: a
+ * draw of what is resident, scissored to one pixel, makes llvmpipe's shader variants of the
+ * stack, the overlays' font atlas and Session::drawFrame's compiler-page release then instead
+ * of in the first frame (docs/performance.md §5.2). The frame drawn next clears it: same pixels.
+ * @return whether it drew a tile (else it is tried again when more tiles may be resident)
+ */
+bool drawWarmUp(Session& s, const math::Camera& cam, double time, int width, int height) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, 1, 1);
+    const FrameRecord r = s.drawFrame(cam, time, width, height);
+    glDisable(GL_SCISSOR_TEST);
+    return r.tilesDrawn > 0;
 }
 
 }  // namespace
@@ -275,7 +292,13 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         // Deterministic output: redraw until every tile of this view (and both frames of each
         // sequence pair) is resident, then keep that last, complete frame.
         const double waitStart = clock.now();
+        bool warm = i > 0;  // the first frame only: later ones find the variants made
+        double lastWarmUp = -1.0;
         for (s.prepare(cam, times[i]); !s.terrain().settled(); s.prepare(cam, times[i])) {
+            if (!warm && clock.now() - lastWarmUp > kWarmUpRetrySeconds) {
+                lastWarmUp = clock.now();
+                warm = drawWarmUp(s, cam, times[i], width, height);
+            }
             if (clock.now() - waitStart > kSettleTimeoutSeconds) {
                 KIOSK_LOG_WARN(
                     kTag, "frame %zu: tiles still missing after %.0f s; drawing what is resident",
