@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <thread>
 
 namespace kiosk::app {
@@ -144,6 +145,10 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         return kExitBadInput;
     }
 
+    // The scenario and its stores' metadata are read (no GL, ~15 ms) while the driver starts
+    // (~0.2 s; docs/performance.md §5.2). Errors keep their order: a machine that cannot draw
+    // says so before a scenario's mistakes.
+    auto checked = std::async(std::launch::async, Session::readChecked, scenarioPath);
     platform::DisplayOptions dopts;
     dopts.kind = platform::DisplayKind::Headless;
     dopts.width = width;
@@ -158,9 +163,16 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         printDiagnostics(caps.diagnostics);
         return kExitCannotRun;
     }
+    auto scenario = checked.get();
+    if (!scenario) {
+        printDiagnostics(scenario.diagnostics);
+        return kExitBadInput;
+    }
+    for (const auto& d : scenario.diagnostics.items())  // as Session::open says them
+        KIOSK_LOG_WARN("app::Session", "%s", d.format().c_str());
     // --reference full: the same view at full resolution, to compare a LOD frame against.
-    auto session =
-        Session::open(scenarioPath, *caps, [&reference, &occlusion](config::Scenario& sc) {
+    auto session = Session::create(
+        std::move(*scenario.value), *caps, [&reference, &occlusion](config::Scenario& sc) {
             if (reference)
                 sc.terrain.reference = *reference == "full" ? config::TerrainReference::Full
                                                             : config::TerrainReference::Lod;

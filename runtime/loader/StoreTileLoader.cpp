@@ -1,6 +1,7 @@
 #include "runtime/loader/StoreTileLoader.h"
 
 #include "runtime/anim/ArrivalThresholds.h"
+#include "runtime/io/MipChain.h"
 
 #include <algorithm>
 #include <chrono>
@@ -275,6 +276,8 @@ TilePayload StoreTileLoader::load(const LoadRequest& request) {
             }
             p.diagnostics.append(r.diagnostics);
             p.image = std::move(*r.value);
+            // Its mipmaps made here, not by glGenerateMipmap on the render thread (io/MipChain.h).
+            io::MipChain::append(p.image->rgba, p.image->width, p.image->height);
             break;
         }
         case io::LayerKind::Sequence: {

@@ -1,5 +1,8 @@
 #include "runtime/render/Textures.h"
 
+#include "runtime/io/MipChain.h"
+
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -19,6 +22,28 @@ gl::Texture makeRgbaTexture(int width, int height, const std::uint8_t* rgba, boo
     } else {
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     }
+    return tex;
+}
+
+gl::Texture makeRgbaTextureLevels(int width, int height, const std::uint8_t* rgba,
+                                  std::size_t bytes) {
+    if (!io::MipChain::applies(width, height) || bytes != io::MipChain::chainBytes(width, height))
+        return makeRgbaTexture(width, height, rgba, true);
+    const int levels = io::MipChain::levelCount(width, height);
+    auto tex = gl::Texture::create();
+    glBindTexture(GL_TEXTURE_2D, tex.id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexStorage2D(GL_TEXTURE_2D, levels, GL_RGBA8, width, height);
+    std::size_t offset = 0;
+    for (int level = 0; level < levels; ++level) {
+        glTexSubImage2D(GL_TEXTURE_2D, level, 0, 0, std::max(1, width >> level),
+                        std::max(1, height >> level), GL_RGBA, GL_UNSIGNED_BYTE, rgba + offset);
+        offset += io::MipChain::levelBytes(width, height, level);
+    }
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     return tex;
 }
 

@@ -250,10 +250,12 @@ void TerrainScene::uploadPayload(terrain::TileHandle handle, terrain::TilePayloa
             payload.mesh->indices = {};
         }
     } else if (payload.image) {
-        bytes = std::max<std::size_t>(payload.image->rgba.size() * 4 / 3, 1);  // with mipmaps
+        const io::ImageTile& im = *payload.image;  // level 0, and its mipmaps (io/MipChain.h)
+        bytes =
+            std::max<std::size_t>(std::size_t(im.width) * std::size_t(im.height) * 4 * 4 / 3, 1);
         if (!mCache->reserveGpu(handle, bytes)) return;
-        slot.texture = render::makeRgbaTexture(payload.image->width, payload.image->height,
-                                               payload.image->rgba.data(), true);
+        slot.texture =
+            render::makeRgbaTextureLevels(im.width, im.height, im.rgba.data(), im.rgba.size());
         payload.image->rgba = {};
     } else if (payload.compressed) {
         bytes = std::max<std::size_t>(
