@@ -34,10 +34,10 @@ struct VideoChapter {
 
 /**
  * @brief How much higher (lower priority) the nice value of the encoder thread, and of the
- * threads the codec starts from it, is than the caller's. llvmpipe keeps both cores about 90 %
- * busy while drawing a 1080p frame; at a lower priority the encoder runs in the core time the
- * rasterizer leaves idle instead of preempting its threads, which the render thread then waits
- * for (docs/performance.md §7 has the figures). Capped at 19.
+ * threads the codec starts from it, is than the caller's, so that encoding yields the cores to
+ * the rasterizer threads the render thread waits for. On the 2-core benchmark machine the
+ * difference against the same priority was within the run-to-run noise (docs/performance.md
+ * §7). Capped at 19.
  */
 inline constexpr int kEncoderNice = 10;
 /** @brief The encoder thread's name (/proc/PID/task/TID/comm), for tools and the tests. */

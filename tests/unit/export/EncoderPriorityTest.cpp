@@ -1,7 +1,6 @@
-// The encoder thread, and every thread the codec starts from it, runs kEncoderNice nice steps below
-// the caller's priority: the export's encoder fills the core time llvmpipe leaves idle instead of
-// preempting the rasterizer (docs/performance.md §7). Read back from /proc, the way an operator
-// would check it.
+// The encoder thread, and every thread the codec starts from it, runs kEncoderNice nice steps
+// below the caller's priority, so an export yields the cores to the rasterizer
+// (docs/performance.md §7). Read back from /proc, the way an operator would check it.
 #include "runtime/export/VideoEncoder.h"
 
 #include <gtest/gtest.h>
