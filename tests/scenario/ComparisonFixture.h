@@ -148,9 +148,10 @@ protected:
         auto vp = s.viewpointAt(s.startTime(), "");
         return app::makeCamera(*vp, s.terrain().bounds(), kW, kH, 45.0);
     }
-    /** @brief Frame step k once every tile of the view is resident. */
-    gl::Image settled(app::Session& s, int k) {
-        const double t = s.startTime() + 3600.0 * k;
+    /** @brief The view `hours` after the start (whole hours: frame step k) once every tile of
+     * the view is resident. */
+    gl::Image settled(app::Session& s, double hours) {
+        const double t = s.startTime() + 3600.0 * hours;
         const math::Camera cam = camera(s);
         EXPECT_TRUE(settleView(s, cam, t));
         auto rt = makeTarget(kW, kH);

@@ -53,14 +53,9 @@ protected:
         if (sImport.empty()) sImport = makeRun(sDir, "m", [](int k) { return kValues[k]; });
     }
     gl::Image at(app::Session& s, double hours) {
-        const double t = s.startTime() + 3600.0 * hours;
-        const math::Camera cam = camera(s);
-        EXPECT_TRUE(settleView(s, cam, t));
-        auto rt = makeTarget(kW, kH);
-        rt.bind();
-        s.drawFrame(cam, t, kW, kH);
+        gl::Image image = settled(s, hours);
         EXPECT_FALSE(s.terrain().frameInfo().mixedSequenceFrames);
-        return rt.readColor();
+        return image;
     }
 };
 
