@@ -92,13 +92,6 @@ Result<std::unique_ptr<VideoEncoder>> VideoEncoder::open(const VideoOptions& opt
     Diagnostics d;
     impl->stream = makeEncoderStream(d);
     if (!impl->stream) return d;
-    impl->frameBytes = std::size_t(options.width) * std::size_t(options.height) * 4;
-    const int slots = std::max(1, options.queueFrames);
-    impl->pool.resize(std::size_t(slots));
-    for (std::size_t i = 0; i < impl->pool.size(); ++i) {
-        impl->pool[i].resize(impl->frameBytes);
-        impl->freeSlots.push_back(i);
-    }
     Impl* raw = impl.get();
     std::promise<Impl::Opened> opened;
     auto openResult = opened.get_future();
@@ -106,9 +99,19 @@ Result<std::unique_ptr<VideoEncoder>> VideoEncoder::open(const VideoOptions& opt
         std::thread([raw, options, p = std::move(opened)]() mutable { raw->run(options, p); });
     const auto [ok, error] = openResult.get();
     if (!ok) {
-        impl->worker.join();
-        impl->finished = true;  // nothing to finish: the stream was abandoned on the worker
+        impl->worker.join();  // it abandoned the stream and returned
         return error;
+    }
+    // The queue's frames only once the codec is open (the worker waits for a submitted slot).
+    impl->frameBytes = std::size_t(options.width) * std::size_t(options.height) * 4;
+    const int slots = std::max(1, options.queueFrames);
+    impl->pool.resize(std::size_t(slots));
+    {
+        std::lock_guard lock(impl->mutex);
+        for (std::size_t i = 0; i < impl->pool.size(); ++i) {
+            impl->pool[i].resize(impl->frameBytes);
+            impl->freeSlots.push_back(i);
+        }
     }
     return std::unique_ptr<VideoEncoder>(new VideoEncoder(std::move(impl)));
 }
