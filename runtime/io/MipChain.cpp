@@ -1,5 +1,7 @@
 #include "runtime/io/MipChain.h"
 
+#include "runtime/io/TextureBlocks.h"
+
 #include <algorithm>
 
 namespace kiosk::io {
@@ -14,26 +16,20 @@ bool MipChain::applies(int width, int height) {
     return powerOfTwo(width) && powerOfTwo(height);
 }
 
-int MipChain::levelCount(int width, int height) {
-    int levels = 1;
-    for (int size = std::max(width, height); size > 1; size >>= 1) ++levels;
-    return levels;
-}
-
 std::size_t MipChain::levelBytes(int width, int height, int level) {
     return std::size_t(std::max(1, width >> level)) * std::size_t(std::max(1, height >> level)) * 4;
 }
 
 std::size_t MipChain::chainBytes(int width, int height) {
     std::size_t bytes = 0;
-    for (int l = 0, n = levelCount(width, height); l < n; ++l)
+    for (int l = 0, n = fullMipLevels(width, height); l < n; ++l)
         bytes += levelBytes(width, height, l);
     return bytes;
 }
 
 int MipChain::append(std::vector<std::uint8_t>& rgba, int width, int height) {
     if (!applies(width, height) || rgba.size() != levelBytes(width, height, 0)) return 1;
-    const int levels = levelCount(width, height);
+    const int levels = fullMipLevels(width, height);
     rgba.resize(chainBytes(width, height));
     std::size_t srcOffset = 0;
     for (int l = 1; l < levels; ++l) {

@@ -19,16 +19,14 @@ namespace kiosk::io {
 struct MipChain {
     /** @brief Whether a width x height RGBA8 image gets its levels here (powers of two). */
     static bool applies(int width, int height);
-    /** @brief Levels of a full chain down to 1x1 (1 + floor(log2(max(w, h)))). */
-    static int levelCount(int width, int height);
     /** @brief Bytes of level `level` (RGBA8). */
     static std::size_t levelBytes(int width, int height, int level);
-    /** @brief Bytes of levels 0..levelCount-1 together. */
+    /** @brief Bytes of levels 0..fullMipLevels()-1 together (TextureBlocks.h counts them). */
     static std::size_t chainBytes(int width, int height);
     /**
-     * @brief Append levels 1..levelCount-1 to `rgba`, which holds level 0 (width x height RGBA8).
-     * Returns the level count, or 1 (nothing appended) when !applies() or `rgba` is not exactly
-     * one level.
+     * @brief Append levels 1..fullMipLevels()-1 to `rgba`, which holds level 0 (width x height
+     * RGBA8). Returns the level count, or 1 (nothing appended) when !applies() or `rgba` is not
+     * exactly one level.
      */
     static int append(std::vector<std::uint8_t>& rgba, int width, int height);
 };

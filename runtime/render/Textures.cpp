@@ -1,6 +1,7 @@
 #include "runtime/render/Textures.h"
 
 #include "runtime/io/MipChain.h"
+#include "runtime/io/TextureBlocks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -29,7 +30,7 @@ gl::Texture makeRgbaTextureLevels(int width, int height, const std::uint8_t* rgb
                                   std::size_t bytes) {
     if (!io::MipChain::applies(width, height) || bytes != io::MipChain::chainBytes(width, height))
         return makeRgbaTexture(width, height, rgba, true);
-    const int levels = io::MipChain::levelCount(width, height);
+    const int levels = io::fullMipLevels(width, height);
     auto tex = gl::Texture::create();
     glBindTexture(GL_TEXTURE_2D, tex.id());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);

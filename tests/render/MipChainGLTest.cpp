@@ -2,6 +2,7 @@
 // texels, level by level), and render::makeRgbaTextureLevels uploading them as they are
 // (docs/performance.md §5.2).
 #include "runtime/io/MipChain.h"
+#include "runtime/io/TextureBlocks.h"
 #include "runtime/render/Textures.h"
 #include "tests/support/EglTestContext.h"
 
@@ -45,9 +46,9 @@ TEST(MipChain, SizesAndLevels) {
     EXPECT_TRUE(io::MipChain::applies(256, 64));
     EXPECT_FALSE(io::MipChain::applies(257, 256));
     EXPECT_FALSE(io::MipChain::applies(0, 256));
-    EXPECT_EQ(io::MipChain::levelCount(256, 256), 9);
-    EXPECT_EQ(io::MipChain::levelCount(256, 64), 9);
-    EXPECT_EQ(io::MipChain::levelCount(1, 1), 1);
+    EXPECT_EQ(io::fullMipLevels(256, 256), 9);
+    EXPECT_EQ(io::fullMipLevels(256, 64), 9);
+    EXPECT_EQ(io::fullMipLevels(1, 1), 1);
     EXPECT_EQ(io::MipChain::chainBytes(4, 2), std::size_t(4 * 2 * 4 + 2 * 1 * 4 + 1 * 1 * 4));
     // A 2x2 image: one more level, each channel the rounded mean.
     // A 2x2 image: one more level; across rounded, then down rounded (llvmpipe's lerps).
@@ -71,7 +72,7 @@ TEST_F(MipChainGLTest, LevelsMatchGenerateMipmap) {
         std::vector<std::uint8_t> chain = noiseImage(w, h, unsigned(w * 31 + h));
         const std::vector<std::uint8_t> base = chain;
         const int levels = io::MipChain::append(chain, w, h);
-        ASSERT_EQ(levels, io::MipChain::levelCount(w, h));
+        ASSERT_EQ(levels, io::fullMipLevels(w, h));
         gl::Texture generated = makeRgbaTexture(w, h, base.data(), true);
         gl::Texture uploaded = makeRgbaTextureLevels(w, h, chain.data(), chain.size());
         std::size_t offset = 0;
