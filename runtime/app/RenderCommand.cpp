@@ -185,8 +185,7 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         printDiagnostics(scenario.diagnostics);
         return kExitBadInput;
     }
-    for (const auto& d : scenario.diagnostics.items())  // as Session::open says them
-        KIOSK_LOG_WARN("app::Session", "%s", d.format().c_str());
+    Session::sayWarnings(scenario.diagnostics);
     // --reference full: the same view at full resolution, to compare a LOD frame against.
     auto session = Session::create(
         std::move(*scenario.value), *caps, [&reference, &occlusion](config::Scenario& sc) {

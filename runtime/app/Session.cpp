@@ -54,9 +54,12 @@ Result<std::unique_ptr<Session>> Session::open(
     const std::function<void(config::Scenario&)>& adjust) {
     auto checked = readChecked(scenarioPath);
     if (!checked) return checked.diagnostics;
-    for (const auto& d : checked.diagnostics.items())
-        KIOSK_LOG_WARN(kTag, "%s", d.format().c_str());
+    sayWarnings(checked.diagnostics);
     return create(std::move(*checked.value), caps, adjust);
+}
+
+void Session::sayWarnings(const Diagnostics& warnings) {
+    for (const auto& d : warnings.items()) KIOSK_LOG_WARN(kTag, "%s", d.format().c_str());
 }
 
 Result<std::unique_ptr<config::Scenario>> Session::readChecked(

@@ -42,6 +42,8 @@ public:
      */
     static Result<std::unique_ptr<config::Scenario>> readChecked(
         const std::filesystem::path& scenarioPath);
+    /** @brief Log the warnings readChecked() returned with its scenario, as open() says them. */
+    static void sayWarnings(const Diagnostics& warnings);
     /** @brief The second half, render thread: GL resources for a scenario readChecked passed. */
     static Result<std::unique_ptr<Session>> create(
         std::unique_ptr<config::Scenario> scenario, const gl::Caps& caps,
