@@ -6,10 +6,15 @@
 // texel (the default, docs/products.md) and with it sampling its own frame pair
 // (GEOKIOSK_PRODUCT_FRAME_SHARING=0), and the machine's load average is printed.
 //
-// The three sessions are prepared once (view resident, the pair and the products' states on the
+// The sessions are prepared once (view resident, the pair and the products' states on the
 // GPU), then drawn in turn, frame after frame, while the data time sweeps through the run, so
-// the three see the same machine load; the loader runs as in play (states of new steps are
-// computed on its thread, never on the frame).
+// they see the same machine load; the loader runs as in play (states of new steps are computed
+// on its thread, never on the frame). Then a second phase draws them at one fixed data time
+// ("still": no step, no upload, no loader work), which leaves the cost of shading alone.
+//
+// Besides wall time, each configuration reports CPU time per frame by thread (from
+// /proc/self/task/*/schedstat, robust on a shared machine): the render thread, llvmpipe's
+// rasterizer threads while it is drawn, and its own loader thread over the sweep.
 //
 // usage: bench-products CAIRNS.sww [--frames N] [--size WxH]
 #include "runtime/app/FrameStats.h"
@@ -26,8 +31,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <unistd.h>
 
 using namespace kiosk;
@@ -71,6 +78,48 @@ std::string scenario(int products) {
         "layers": [ )" +
            layers + " ] }";
 }
+
+// CPU time (ms) of this process's threads whose name starts with `prefix` and, when `only` is
+// not null, whose id is in it.
+double threadsCpuMs(const std::string& prefix, const std::set<std::string>* only = nullptr) {
+    double ns = 0;
+    std::error_code ec;
+    for (const auto& task : fs::directory_iterator("/proc/self/task", ec)) {
+        const std::string tid = task.path().filename().string();
+        if (only && !only->count(tid)) continue;
+        std::string name;
+        std::getline(std::ifstream(task.path() / "comm"), name);
+        if (name.rfind(prefix, 0) != 0) continue;
+        double run = 0;  // schedstat: ns on the CPU, ns waiting, timeslices
+        if (std::ifstream(task.path() / "schedstat") >> run) ns += run;
+    }
+    return ns / 1e6;
+}
+
+std::set<std::string> threadsNamed(const std::string& prefix) {
+    std::set<std::string> ids;
+    std::error_code ec;
+    for (const auto& task : fs::directory_iterator("/proc/self/task", ec)) {
+        std::string name;
+        std::getline(std::ifstream(task.path() / "comm"), name);
+        if (name.rfind(prefix, 0) == 0) ids.insert(task.path().filename().string());
+    }
+    return ids;
+}
+
+double mainThreadCpuMs() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) / 1e6;
+}
+
+// What one configuration measured in one phase.
+struct Figures {
+    std::vector<double> ms;  // wall time per frame (drawFrame + glFinish)
+    double renderCpuMs = 0, rasterCpuMs = 0, uploadMs = 0;
+    std::uint64_t uploads = 0;
+    int held = 0;
+};
 
 }  // namespace
 
@@ -121,7 +170,9 @@ int main(int argc, char** argv) {
     const int counts[5] = {0, 1, 3, 1, 3};
     const bool shared[5] = {true, true, true, false, false};
     std::vector<std::unique_ptr<app::Session>> sessions;
+    std::vector<std::set<std::string>> loaders;  // each session's loader thread
     for (int k = 0; k < 5; ++k) {
+        const std::set<std::string> before = threadsNamed("kiosk-loader");
         const int n = counts[k];
         const fs::path file = dir / ("products" + std::to_string(n) + ".json");
         std::ofstream(file) << scenario(n);
@@ -134,6 +185,10 @@ int main(int argc, char** argv) {
             return 1;
         }
         sessions.push_back(std::move(*s.value));
+        std::set<std::string> mine;
+        for (const auto& id : threadsNamed("kiosk-loader"))
+            if (!before.count(id)) mine.insert(id);
+        loaders.push_back(std::move(mine));
     }
     auto target = gl::RenderTarget::create(w, h);
     if (!target) return 3;
@@ -145,46 +200,85 @@ int main(int argc, char** argv) {
         return app::makeCamera(vp ? *vp : s.terrain().overviewViewpoint(), s.terrain().bounds(), w,
                                h, s.scenario().camera.fovY);
     };
-    std::vector<std::vector<double>> ms(5);
-    std::vector<int> held(5, 0);
-    // The data time sweeps the run once; every session draws each time (after its loader has
-    // brought that step: the view is settled first, not timed, as a kiosk's prefetch would).
-    for (int f = 0; f < frames; ++f) {
-        const double t = t0 + span * (0.05 + 0.9 * double(f) / double(frames - 1));
-        for (std::size_t k = 0; k < sessions.size(); ++k) {
-            app::Session& s = *sessions[k];
-            const math::Camera cam = cameraOf(s);
-            for (int tries = 0; tries < 20000 && (tries == 0 || !s.terrain().settled()); ++tries) {
-                s.prepare(cam, t);
-                if (!s.terrain().settled()) usleep(500);
+    // Draws every session at data time timeOf(f) for f < frames (each settled first, not timed,
+    // as a kiosk's prefetch would have it).
+    auto run = [&](auto timeOf, std::vector<double>* loaderMs) {
+        std::vector<Figures> fig(sessions.size());
+        std::vector<double> loader0(sessions.size());
+        for (std::size_t k = 0; k < sessions.size(); ++k)
+            loader0[k] = threadsCpuMs("kiosk-loader", &loaders[k]);
+        for (int f = 0; f < frames; ++f) {
+            const double t = timeOf(f);
+            for (std::size_t k = 0; k < sessions.size(); ++k) {
+                app::Session& s = *sessions[k];
+                const math::Camera cam = cameraOf(s);
+                for (int tries = 0; tries < 20000 && (tries == 0 || !s.terrain().settled());
+                     ++tries) {
+                    s.prepare(cam, t);
+                    if (!s.terrain().settled()) usleep(500);
+                }
+                const double raster = threadsCpuMs("llvmpipe"), cpu = mainThreadCpuMs();
+                const double a = wall.now();
+                const app::FrameRecord rec = s.drawFrame(cam, t, w, h);
+                glFinish();
+                fig[k].ms.push_back((wall.now() - a) * 1000.0);
+                fig[k].renderCpuMs += mainThreadCpuMs() - cpu;
+                fig[k].rasterCpuMs += threadsCpuMs("llvmpipe") - raster;
+                fig[k].uploadMs += rec.uploadMs;
+                fig[k].uploads += rec.uploads;
+                fig[k].held += s.terrain().frameInfo().holdingSequence;
             }
-            const double a = wall.now();
-            s.drawFrame(cam, t, w, h);
-            glFinish();
-            ms[k].push_back((wall.now() - a) * 1000.0);
-            held[k] += s.terrain().frameInfo().holdingSequence;
         }
-    }
-    const double base = app::percentile(ms[0], 50);
+        if (loaderMs)
+            for (std::size_t k = 0; k < sessions.size(); ++k)
+                loaderMs->push_back(threadsCpuMs("kiosk-loader", &loaders[k]) - loader0[k]);
+        return fig;
+    };
+    std::vector<double> loaderMs;
+    // The data time sweeps the run once, then stays at mid-run.
+    const std::vector<Figures> sweep =
+        run([&](int f) { return t0 + span * (0.05 + 0.9 * double(f) / double(frames - 1)); },
+            &loaderMs);
+    const std::vector<Figures> still = run([&](int) { return t0 + 0.5 * span; }, nullptr);
     out["size"] = std::to_string(w) + "x" + std::to_string(h);
     out["frames_per_configuration"] = frames;
-    for (std::size_t k = 0; k < 5; ++k) {
-        const double p50 = app::percentile(ms[k], 50);
+    const auto report = [&](const std::vector<Figures>& fig, std::size_t k) {
+        const Figures& x = fig[k];
+        const double base = app::percentile(fig[0].ms, 50);
+        const double p50 = app::percentile(x.ms, 50), n = double(x.ms.size());
+        const double cpu = (x.renderCpuMs + x.rasterCpuMs) / n;
+        const double baseCpu = (fig[0].renderCpuMs + fig[0].rasterCpuMs) / n;
         nlohmann::json r;
-        r["product_layers"] = counts[k];
-        r["depth_layer_reads_product_texel"] = shared[k];
-        r["frame_ms"] = {{"p50", p50}, {"p95", app::percentile(ms[k], 95)}};
-        r["held_frames"] = held[k];
+        r["frame_ms"] = {{"p50", p50}, {"p95", app::percentile(x.ms, 95)}};
+        // CPU per frame: the render thread (update, uploads, draw calls) and llvmpipe's
+        // rasterizer threads (shading) while this configuration was drawn.
+        r["cpu_ms_per_frame"] = {{"render_thread", x.renderCpuMs / n},
+                                 {"rasterizer", x.rasterCpuMs / n},
+                                 {"total", cpu}};
+        r["uploads_per_frame"] = double(x.uploads) / n;
+        r["upload_ms_per_frame"] = x.uploadMs / n;
+        r["held_frames"] = x.held;
         if (counts[k] > 0) {
             const double each = (p50 - base) / counts[k];
             r["ms_per_product"] = each;
             r["fraction_of_frame_per_product"] = each / std::max(1e-9, p50);
             r["within_goal_0_15"] = each / std::max(1e-9, p50) < 0.15;
+            r["cpu_fraction_of_frame_per_product"] =
+                (cpu - baseCpu) / counts[k] / std::max(1e-9, cpu);
         }
+        return r;
+    };
+    for (std::size_t k = 0; k < 5; ++k) {
+        nlohmann::json r = report(sweep, k);
+        r["product_layers"] = counts[k];
+        r["depth_layer_reads_product_texel"] = shared[k];
+        r["loader_cpu_ms_per_frame"] = loaderMs[k] / frames;
+        r["still"] = report(still, k);
         out["results"].push_back(r);
     }
     out["baseline"] =
         "0 product layers: the depth sequence layer alone, same run, same view and times";
+    out["still"] = "the same sessions drawn at one data time (mid-run): no step, upload or load";
     double loadavg[3] = {0, 0, 0};
     if (getloadavg(loadavg, 3) == 3)
         out["load_average_1_5_15"] = {loadavg[0], loadavg[1], loadavg[2]};

@@ -1,5 +1,6 @@
 #include "runtime/loader/DerivedTiles.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 
@@ -21,8 +22,14 @@ void DerivedTiles::keep(Track& t, int frame, const std::vector<float>& state) {
     mBytes += state.size() * sizeof(float);
 }
 
+std::size_t DerivedTiles::budget() const noexcept {
+    return std::max(mBudget.value.load(std::memory_order_relaxed),
+                    mTracksInView.value.load(std::memory_order_relaxed) * mLargestTrack);
+}
+
 void DerivedTiles::evict(const Key& keepKey) {
-    while (mBytes > mBudget && mTracks.size() > 1) {
+    const std::size_t limit = budget();
+    while (mBytes > limit && mTracks.size() > 1) {
         auto oldest = mTracks.end();
         for (auto it = mTracks.begin(); it != mTracks.end(); ++it)
             if (!(it->first == keepKey) &&
@@ -100,6 +107,7 @@ Diagnostics DerivedTiles::compute(int binding, const Derivation& d, io::StoreRea
         }
         d.advance(state, *values, seq->frameTimes[std::size_t(j)],
                   j > 0 ? seq->frameTimes[std::size_t(j) - 1] : std::nan(""));
+        ++mFolded;
         if ((j + 1) % kCheckpointEvery == 0 && j < frame) keep(track, j, state);
     }
     std::vector<float> next;
@@ -136,6 +144,7 @@ Diagnostics DerivedTiles::compute(int binding, const Derivation& d, io::StoreRea
     mBytes = mBytes - was + now;
     track.next = std::move(next);
     keep(track, frame, state);
+    mLargestTrack = std::max(mLargestTrack, track.bytes);
     evict(key);
     return diags;
 }

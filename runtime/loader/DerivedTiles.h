@@ -5,6 +5,7 @@
 #include "runtime/io/StoreReader.h"
 #include "runtime/loader/Derivation.h"
 
+#include <atomic>
 #include <cstdint>
 #include <map>
 #include <span>
@@ -21,14 +22,30 @@ namespace kiosk::loader {
  * for frame k resumes from the latest kept state at or before k (a seek backwards costs at most
  * kCheckpointEvery - 1 frames once the checkpoints exist, a cold seek k + 1 frames). The bytes
  * held stay under the budget: whole tiles are dropped least recently used first. Correctness
- * never depends on what is kept: any state is recomputable from frame 0.
+ * never depends on what is kept: any state is recomputable from frame 0. The budget never drops
+ * the states of the tiles the view draws now (setTracksInView): with fewer than those kept,
+ * every step would restart each of them from frame 0 (k + 2 frame reads per tile and step).
  */
 class DerivedTiles {
 public:
     static constexpr int kCheckpointEvery = 16;
 
-    void setBudget(std::size_t bytes) noexcept { mBudget = bytes; }
+    /** @brief Bytes the states may hold at least (any thread). */
+    void setBudget(std::size_t bytes) noexcept {
+        mBudget.value.store(bytes, std::memory_order_relaxed);
+    }
+    /**
+     * @brief (tile, product layer) pairs the view draws now (any thread, e.g. the render thread
+     * every frame): the budget then holds at least that many of the largest tracks kept so far.
+     */
+    void setTracksInView(std::size_t tracks) noexcept {
+        mTracksInView.value.store(tracks, std::memory_order_relaxed);
+    }
+    /** @brief The bytes the states may hold now (loader thread). */
+    std::size_t budget() const noexcept;
     std::size_t bytes() const noexcept { return mBytes; }
+    /** @brief Stored frames folded into states so far (loader thread): what recomputing costs. */
+    std::uint64_t framesFolded() const noexcept { return mFolded; }
 
     /**
      * @brief The product tile of frame `frame` of `sequence` on tile `id` (binding `binding`)
@@ -57,8 +74,21 @@ private:
     void evict(const Key& keepKey);
 
     std::map<Key, Track> mTracks;
-    std::size_t mBudget = 64u << 20;
+    /** @brief Set by another thread than the loader's; copyable so an idle loader can move. */
+    struct SharedSize {
+        std::atomic<std::size_t> value;
+        explicit SharedSize(std::size_t v) noexcept : value(v) {}
+        SharedSize(const SharedSize& o) noexcept : value(o.value.load()) {}
+        SharedSize& operator=(const SharedSize& o) noexcept {
+            value.store(o.value.load());
+            return *this;
+        }
+    };
+    SharedSize mBudget{std::size_t(64) << 20};
+    SharedSize mTracksInView{0};
     std::size_t mBytes = 0;
+    std::size_t mLargestTrack = 0;
+    std::uint64_t mFolded = 0;  ///< bytes of the largest track kept so far
     std::uint64_t mUse = 0;
 };
 

@@ -73,8 +73,10 @@ public:
         mDelaySeconds = seconds;
         mDelayStore = store;
     }
-    /** @brief Bytes the running states of derived products may hold (set before start). */
+    /** @brief Bytes the running states of derived products may hold at least (any thread). */
     void setDerivedBudget(std::size_t bytes) noexcept { mDerived.setBudget(bytes); }
+    /** @brief (tile, product layer) pairs in view, whose states are kept (any thread). */
+    void setDerivedTracksInView(std::size_t tracks) noexcept { mDerived.setTracksInView(tracks); }
     /**
      * @brief Imagery tiles as the GPU blocks of `format` where the store holds them
      * (kiosk_tile_textures; the PNG otherwise); None (default): always the PNG. Before start.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <exception>
+#include <pthread.h>
 #include <string>
 #include <utility>
 
@@ -31,7 +32,12 @@ TileLoader::TileLoader(LoaderOptions options, std::unique_ptr<LoadFunction> func
     mRing.resize(mOptions.maxInFlight);
     mRingSlotBytes.assign(mOptions.maxInFlight, 0);
     mDelivered.resize(256 + 4 * std::size_t(mOptions.maxInFlight));
-    if (mFunction) mThread = std::thread([this] { run(); });
+    if (mFunction) {
+        mThread = std::thread([this] { run(); });
+        // Named here, before the constructor returns, so a profile (top -H, bench-products'
+        // CPU per thread) tells the loader apart from the moment it exists.
+        pthread_setname_np(mThread.native_handle(), "kiosk-loader");
+    }
 }
 
 TileLoader::~TileLoader() {

@@ -165,8 +165,10 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
     for (const auto& st : s->mLayerStores)
         openers.push_back([path = st.path] { return io::StoreReader::open(path); });
     auto fn = std::make_unique<loader::StoreTileLoader>(std::move(openers), bindings, s->mOptions);
-    // Running states of derived products (loader thread): a quarter of the CPU tile budget.
+    // Running states of derived products (loader thread): at least a quarter of the CPU tile
+    // budget, and always those of the tiles in view (sizeDerivedStatesToView).
     fn->setDerivedBudget(budget.cpuBytes / 4);
+    s->mStoreLoader = fn.get();
     // Imagery as stored GPU blocks where the context has the format (docs/terrain.md §11).
     s->mTextureChoice = chooseTextureFormat(scenario.terrain.textureCompression, caps);
     fn->setTextureFormat(s->mTextureChoice.format);
@@ -407,6 +409,7 @@ void TerrainScene::update(const math::Camera& camera, double time) {
     mSettled = !requestsPending && mLoader->inFlight() == 0 && !mFrame.holdingSequence &&
                mSelection->counters.tilesFromAncestor == 0;
     sizeBudgetsToView();  // before the prefetch below touches frames ahead
+    sizeDerivedStatesToView();
     planSequencePrefetch();
     for (const auto& r : mSequencePrefetch) mLoader->request(r.key, r.priority);
     mLoader->submit();

@@ -32,7 +32,8 @@
 #include "runtime/terrain/TileStatsTable.h"
 
 namespace kiosk::loader {
-struct LayerBinding;  // runtime/loader/StoreTileLoader.h
+struct LayerBinding;    // runtime/loader/StoreTileLoader.h
+class StoreTileLoader;  // runtime/loader/StoreTileLoader.h
 }
 
 namespace kiosk::scene {
@@ -348,6 +349,8 @@ private:
     void recordLoadTime(const loader::LoadResult& result);
     // TerrainSceneBudgets.cpp: cache budgets sized to the view's working set.
     void sizeBudgetsToView();
+    /** @brief Tells the loader how many product states the view draws (always kept). */
+    void sizeDerivedStatesToView();
     void sendPrefetch();
     void addPathFramePrefetch(const terrain::SelectionResult& future);
     bool specComplete(int spec) const;
@@ -376,6 +379,8 @@ private:
     std::unique_ptr<terrain::CacheResidency> mPrefetchResidency;
     terrain::TileStatsTable mStats;
     std::unique_ptr<loader::TileLoader> mLoader;
+    loader::StoreTileLoader* mStoreLoader = nullptr;  ///< mLoader's function (derived states)
+    std::vector<std::uint64_t> mViewTrackIds;         ///< reused by sizeDerivedStatesToView()
     loader::UploadBudget mBudget{CacheDefaults::kUploadBytesPerFrame, CacheDefaults::kUploadMsPerFrame};
     bool mAutoCpu = false, mAutoGpu = false;       ///< scenario left the budget to the view
     std::size_t mViewCpuHigh = 0, mViewGpuHigh = 0;  ///< largest view working set so far

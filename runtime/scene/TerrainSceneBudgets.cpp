@@ -1,5 +1,8 @@
 // TerrainScene: cache budgets sized to the working set of the view (docs/performance.md).
+#include "runtime/loader/StoreTileLoader.h"
 #include "runtime/scene/TerrainScene.h"
+
+#include <algorithm>
 
 namespace kiosk::scene {
 
@@ -20,6 +23,26 @@ void TerrainScene::sizeBudgetsToView() {
         b.gpuBytes = workingSetBudget(mViewGpuHigh, mAheadBytes, CacheDefaults::kFloorGpuBytes);
     if (b.cpuBytes != mCache->budget().cpuBytes || b.gpuBytes != mCache->budget().gpuBytes)
         mCache->setBudget(b);
+}
+
+void TerrainScene::sizeDerivedStatesToView() {
+    if (!mStoreLoader || !mSelection) return;
+    // One running state per (tile, cumulative product layer): the tiles each product layer
+    // draws now, whose next steps (and prefetched frames ahead) fold into those states.
+    std::size_t tracks = 0;
+    for (const StackLayer& l : mLayers) {
+        if (!l.productClock || l.specA < 0) continue;
+        mViewTrackIds.clear();
+        for (const auto& t : mSelection->tiles)
+            if (int(t.textureCount) > l.specA)
+                mViewTrackIds.push_back(
+                    mSelection->textures[t.firstTexture + std::uint32_t(l.specA)]
+                        .wanted.id.packed());
+        std::sort(mViewTrackIds.begin(), mViewTrackIds.end());
+        tracks += std::size_t(std::unique(mViewTrackIds.begin(), mViewTrackIds.end()) -
+                              mViewTrackIds.begin());
+    }
+    mStoreLoader->setDerivedTracksInView(tracks);
 }
 
 std::vector<std::pair<std::string, double>> TerrainScene::budgets() const {

@@ -344,6 +344,37 @@ TEST_F(ProductsGLTest, RunningStateAfterSeeksEqualsColdComputation) {
     EXPECT_EQ(std::memcmp(again.values.data(), fresh.values.data(), fresh.values.size() * 4), 0);
 }
 
+// Two product layers on one tile under a budget below one state (as the 16 MB floor of the CPU
+// tile budget was for 3 products x 5 cairns tiles): without the view's tracks every step
+// restarts the other layer from frame 0; with them (the scene says how many it draws) each step
+// folds one frame per layer. The values are the same either way.
+TEST_F(ProductsGLTest, StatesOfTheViewAreKeptWhateverTheBudget) {
+    products::MaximumSoFar maximum(0.0);
+    products::DurationAbove duration(0.3, 60.0, 0.0, false);
+    std::uint64_t folded[2] = {0, 0};
+    io::RasterTile last[2][2];
+    for (int inView = 0; inView < 2; ++inView) {
+        loader::DerivedTiles tiles;
+        tiles.setBudget(1);
+        if (inView) tiles.setTracksInView(2);
+        for (int f = 10; f <= 20; ++f) {
+            ASSERT_FALSE(tiles.compute(1, maximum, *mReader, "flood", f, mTile, last[inView][0])
+                             .hasErrors());
+            ASSERT_FALSE(tiles.compute(2, duration, *mReader, "flood", f, mTile, last[inView][1])
+                             .hasErrors());
+        }
+        folded[inView] = tiles.framesFolded();
+    }
+    EXPECT_EQ(folded[1], 2u * 11u + 2u * 10u);  // frames 0..10 once, then one per step
+    EXPECT_EQ(folded[0], 2u * (11u + 12u + 13u + 14u + 15u + 16u + 17u + 18u + 19u + 20u + 21u));
+    for (int k = 0; k < 2; ++k) {
+        ASSERT_EQ(last[0][k].values.size(), last[1][k].values.size());
+        EXPECT_EQ(std::memcmp(last[0][k].values.data(), last[1][k].values.data(),
+                              last[1][k].values.size() * sizeof(float)),
+                  0);
+    }
+}
+
 // ARR 2019 Book 6 Chapter 7 Table 6.7.4 written out independently: per class the depth (m),
 // velocity (m/s) and depth x velocity (m2/s) limits.
 int arrClass(double d, double v) {
