@@ -279,6 +279,8 @@ int main(int argc, char** argv) {
         r["product_layers"] = counts[k];
         r["depth_layer_reads_product_texel"] = shared[k];
         r["loader_cpu_ms_per_frame"] = loaderMs[k] / frames;
+        for (const auto& [name, value] : sessions[k]->budgets())
+            if (name == "derived_state_bytes") r["derived_state_bytes"] = value;
         r["still"] = report(still, k);
         out["results"].push_back(r);
     }

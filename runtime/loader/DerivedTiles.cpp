@@ -146,6 +146,7 @@ Diagnostics DerivedTiles::compute(int binding, const Derivation& d, io::StoreRea
     keep(track, frame, state);
     mLargestTrack = std::max(mLargestTrack, track.bytes);
     evict(key);
+    mBytesHeld.value.store(mBytes, std::memory_order_relaxed);
     return diags;
 }
 

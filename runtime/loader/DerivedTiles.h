@@ -44,6 +44,10 @@ public:
     /** @brief The bytes the states may hold now (loader thread). */
     std::size_t budget() const noexcept;
     std::size_t bytes() const noexcept { return mBytes; }
+    /** @brief bytes() after the last computation, readable from any thread (metrics). */
+    std::size_t bytesHeld() const noexcept {
+        return mBytesHeld.value.load(std::memory_order_relaxed);
+    }
     /** @brief Stored frames folded into states so far (loader thread): what recomputing costs. */
     std::uint64_t framesFolded() const noexcept { return mFolded; }
 
@@ -74,7 +78,7 @@ private:
     void evict(const Key& keepKey);
 
     std::map<Key, Track> mTracks;
-    /** @brief Set by another thread than the loader's; copyable so an idle loader can move. */
+    /** @brief Shared with another thread than the loader's; copyable so an idle loader moves. */
     struct SharedSize {
         std::atomic<std::size_t> value;
         explicit SharedSize(std::size_t v) noexcept : value(v) {}
@@ -86,6 +90,7 @@ private:
     };
     SharedSize mBudget{std::size_t(64) << 20};
     SharedSize mTracksInView{0};
+    SharedSize mBytesHeld{0};
     std::size_t mBytes = 0;
     std::size_t mLargestTrack = 0;
     std::uint64_t mFolded = 0;  ///< bytes of the largest track kept so far

@@ -77,6 +77,8 @@ public:
     void setDerivedBudget(std::size_t bytes) noexcept { mDerived.setBudget(bytes); }
     /** @brief (tile, product layer) pairs in view, whose states are kept (any thread). */
     void setDerivedTracksInView(std::size_t tracks) noexcept { mDerived.setTracksInView(tracks); }
+    /** @brief Bytes the running states hold (any thread; as of the last derivation). */
+    std::size_t derivedBytes() const noexcept { return mDerived.bytesHeld(); }
     /**
      * @brief Imagery tiles as the GPU blocks of `format` where the store holds them
      * (kiosk_tile_textures; the PNG otherwise); None (default): always the PNG. Before start.

@@ -58,6 +58,8 @@ std::vector<std::pair<std::string, double>> TerrainScene::budgets() const {
             {"loader_max_bytes_in_flight", double(loader::LoaderOptions{}.maxBytesInFlight)},
             {"loader_held_bytes_high", double(mLoader ? mLoader->counters().heldBytesHigh : 0)},
             {"sequence_prefetch_bytes", double(mAheadBytes)},
+            // Running states of the derived products (loader thread), docs/products.md.
+            {"derived_state_bytes", double(mStoreLoader ? mStoreLoader->derivedBytes() : 0)},
             {"upload_bytes_per_frame", double(mBudget.bytesPerFrame())},
             {"upload_ms_per_frame", mBudget.msPerFrame()},
             {"loader_max_in_flight", double(loader::LoaderOptions{}.maxInFlight)},
