@@ -24,11 +24,30 @@ void DerivedTiles::keep(Track& t, int frame, const std::vector<float>& state) {
 
 std::size_t DerivedTiles::budget() const noexcept {
     return std::max(mBudget.value.load(std::memory_order_relaxed),
-                    mTracksInView.value.load(std::memory_order_relaxed) * mLargestTrack);
+                    mTracksInView.value.load(std::memory_order_relaxed) * mLargestRunning);
 }
 
 void DerivedTiles::evict(const Key& keepKey) {
     const std::size_t limit = budget();
+    if (mBytes <= limit) return;
+    // Checkpoints first, least recently used tiles first (the one just computed last): the
+    // latest states are what playing forward folds the next frame into; a checkpoint only
+    // shortens a seek backwards.
+    std::vector<std::pair<std::uint64_t, Track*>> byUse;
+    for (auto& [key, track] : mTracks)
+        if (track.states.size() > 1) byUse.emplace_back(track.lastUse, &track);
+    std::sort(byUse.begin(), byUse.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (auto& [use, t] : byUse) {
+        if (mBytes <= limit) return;
+        const auto latest = std::prev(t->states.end());
+        for (auto it = t->states.begin(); it != latest;) {
+            const std::size_t b = it->second.size() * sizeof(float);
+            t->bytes -= b;
+            mBytes -= b;
+            it = t->states.erase(it);
+        }
+    }
     while (mBytes > limit && mTracks.size() > 1) {
         auto oldest = mTracks.end();
         for (auto it = mTracks.begin(); it != mTracks.end(); ++it)
@@ -144,7 +163,7 @@ Diagnostics DerivedTiles::compute(int binding, const Derivation& d, io::StoreRea
     mBytes = mBytes - was + now;
     track.next = std::move(next);
     keep(track, frame, state);
-    mLargestTrack = std::max(mLargestTrack, track.bytes);
+    mLargestRunning = std::max(mLargestRunning, (state.size() + track.next.size()) * sizeof(float));
     evict(key);
     mBytesHeld.value.store(mBytes, std::memory_order_relaxed);
     return diags;

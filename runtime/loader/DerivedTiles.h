@@ -21,10 +21,12 @@ namespace kiosk::loader {
  * Per tile it keeps the latest state and a checkpoint every kCheckpointEvery frames; a request
  * for frame k resumes from the latest kept state at or before k (a seek backwards costs at most
  * kCheckpointEvery - 1 frames once the checkpoints exist, a cold seek k + 1 frames). The bytes
- * held stay under the budget: whole tiles are dropped least recently used first. Correctness
- * never depends on what is kept: any state is recomputable from frame 0. The budget never drops
- * the states of the tiles the view draws now (setTracksInView): with fewer than those kept,
- * every step would restart each of them from frame 0 (k + 2 frame reads per tile and step).
+ * held stay under the budget: the checkpoints of the least recently used tiles are dropped
+ * first (a seek backwards there restarts from frame 0), then whole tiles, least recently used
+ * first. Correctness never depends on what is kept: any state is recomputable from frame 0. The
+ * budget always holds the latest state (and next frame) of the tiles the view draws now
+ * (setTracksInView): with fewer kept, every step would restart each of them from frame 0
+ * (k + 2 frame reads per tile and step).
  */
 class DerivedTiles {
 public:
@@ -36,7 +38,8 @@ public:
     }
     /**
      * @brief (tile, product layer) pairs the view draws now (any thread, e.g. the render thread
-     * every frame): the budget then holds at least that many of the largest tracks kept so far.
+     * every frame): the budget then holds at least that many latest states and next frames
+     * (the largest seen), not their checkpoints.
      */
     void setTracksInView(std::size_t tracks) noexcept {
         mTracksInView.value.store(tracks, std::memory_order_relaxed);
@@ -92,8 +95,8 @@ private:
     SharedSize mTracksInView{0};
     SharedSize mBytesHeld{0};
     std::size_t mBytes = 0;
-    std::size_t mLargestTrack = 0;
-    std::uint64_t mFolded = 0;  ///< bytes of the largest track kept so far
+    std::size_t mLargestRunning = 0;  ///< largest latest state + next frame of a tile, bytes
+    std::uint64_t mFolded = 0;
     std::uint64_t mUse = 0;
 };
 
