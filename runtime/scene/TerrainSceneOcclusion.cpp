@@ -69,28 +69,10 @@ bool TerrainScene::occlusionBox(const terrain::DrawTile& t, math::Aabb& box,
 void TerrainScene::runOcclusionRound(std::size_t first, std::size_t last) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
-    // The boxes of the tiles drawn before this round: a box whose sight lines miss them all
-    // cannot be hidden, and a round with no other box is not worth the rasterizer's wait (at the
-    // demo's +3 h start-up view that is every round: 0.09 s of a 0.22 s frame; docs/terrain.md
-    // §10). Scratch kept per thread (render thread only): the frame loop does not allocate.
-    static thread_local std::vector<math::Aabb> occluders;
-    occluders.clear();
-    bool everyOccluderBoxed = true;
-    for (std::size_t k = 0; k < first; ++k) {
-        const terrain::DrawTile& t = mSelection->tiles[mDrawOrder[k]];
-        const terrain::TilePayload* p = t.handle.valid() ? mCache->get(t.handle) : nullptr;
-        if (!p || !p->mesh) continue;  // not drawn
-        math::Aabb box;
-        double post = 0.0;
-        if (occlusionBox(t, box, post))
-            occluders.push_back(box);
-        else
-            everyOccluderBoxed = false;  // drawn, extent unknown: ask every query
-    }
+    render::OcclusionQueries& q = *mOcclusionQueries;
     std::vector<std::int32_t>& slots = mOcclusionSlots;
     slots.assign(last - first, -1);
-    render::OcclusionQueries& q = *mOcclusionQueries;
-    bool begun = false;
+    q.begin(*mOcclusionCamera);
     for (std::size_t k = first; k < last; ++k) {
         const terrain::DrawTile& t = mSelection->tiles[mDrawOrder[k]];
         math::Aabb tight;
@@ -98,21 +80,14 @@ void TerrainScene::runOcclusionRound(std::size_t first, std::size_t last) {
         if (!t.handle.valid() || !occlusionBox(t, tight, post)) continue;
         const auto box = terrain::OcclusionPlan::queryBox(*mOcclusionCamera, tight, post);
         if (!box) continue;  // reaches the near plane: drawn untested
-        if (everyOccluderBoxed &&
-            !terrain::OcclusionPlan::mayBeHidden(*mOcclusionCamera, *box, occluders))
-            continue;  // in plain sight: drawn untested
-        if (!begun) q.begin(*mOcclusionCamera);
-        begun = true;
         slots[k - first] = std::int32_t(q.query(*box));
     }
-    if (begun) {
-        q.end();
-        mFrame.occlusionQueries += std::uint32_t(q.batchSize());
-        ++mFrame.occlusionRounds;
-        for (std::size_t k = first; k < last; ++k)
-            if (slots[k - first] >= 0 && !q.passed(std::size_t(slots[k - first])))
-                mOcclusionHidden[k] = 1;
-    }
+    q.end();
+    mFrame.occlusionQueries += std::uint32_t(q.batchSize());
+    ++mFrame.occlusionRounds;
+    for (std::size_t k = first; k < last; ++k)
+        if (slots[k - first] >= 0 && !q.passed(std::size_t(slots[k - first])))
+            mOcclusionHidden[k] = 1;
     mFrame.occlusionMs += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 

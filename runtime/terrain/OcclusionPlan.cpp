@@ -42,44 +42,4 @@ std::optional<math::Aabb> OcclusionPlan::queryBox(const math::Camera& camera,
     return box;
 }
 
-namespace {
-
-/** Whether the segment from `a` to `b` meets the box (slab test, closed box). */
-bool segmentMeets(const glm::dvec3& a, const glm::dvec3& b, const math::Aabb& box) {
-    const glm::dvec3 d = b - a;
-    double t0 = 0.0, t1 = 1.0;
-    for (int i = 0; i < 3; ++i) {
-        if (std::abs(d[i]) < 1e-300) {
-            if (a[i] < box.min[i] || a[i] > box.max[i]) return false;
-            continue;
-        }
-        double ta = (box.min[i] - a[i]) / d[i], tb = (box.max[i] - a[i]) / d[i];
-        if (ta > tb) std::swap(ta, tb);
-        t0 = std::max(t0, ta);
-        t1 = std::min(t1, tb);
-        if (t0 > t1) return false;
-    }
-    return true;
-}
-
-}  // namespace
-
-bool OcclusionPlan::mayBeHidden(const math::Camera& camera, const math::Aabb& box,
-                                std::span<const math::Aabb> occluders) {
-    const glm::dmat4 viewProj = camera.projection() * camera.view(camera.eye);
-    for (int i = 0; i < 9; ++i) {
-        const glm::dvec3 p(glm::mix(box.min.x, box.max.x, 0.5 * double(i % 3)),
-                           glm::mix(box.min.y, box.max.y, 0.5 * double(i / 3)), box.max.z);
-        // A point outside the view has no sample: it proves nothing.
-        const glm::dvec4 c = viewProj * glm::dvec4(p - camera.eye, 1.0);
-        if (!(c.w > 0) || std::abs(c.x) > c.w || std::abs(c.y) > c.w || std::abs(c.z) > c.w)
-            continue;
-        const bool blocked = std::any_of(occluders.begin(), occluders.end(), [&](const auto& o) {
-            return segmentMeets(camera.eye, p, o);
-        });
-        if (!blocked) return false;
-    }
-    return true;
-}
-
 }  // namespace kiosk::terrain

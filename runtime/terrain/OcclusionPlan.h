@@ -5,7 +5,6 @@
 
 #include <cstddef>
 #include <optional>
-#include <span>
 #include <vector>
 
 namespace kiosk::terrain {
@@ -46,18 +45,6 @@ struct OcclusionPlan {
      */
     static std::optional<math::Aabb> queryBox(const math::Camera& camera, const math::Aabb& tight,
                                               double minMargin);
-
-    /**
-     * @brief Whether query box `box` can be hidden by terrain inside `occluders` (the tight boxes
-     * of the tiles drawn before its round); false when it certainly cannot, so its query (and a
-     * round whose boxes all cannot) is not worth the rasterizer wait. Nine points of the box's
-     * top face are tried: one inside the view whose sight line from the eye crosses no occluder
-     * box has a sample in front of all terrain drawn so far, so the query would pass. Only a
-     * necessary condition for "hidden" (a box sitting behind an occluder box need not be behind
-     * its terrain): a true answer means "ask the query".
-     */
-    static bool mayBeHidden(const math::Camera& camera, const math::Aabb& box,
-                            std::span<const math::Aabb> occluders);
 };
 
 }  // namespace kiosk::terrain

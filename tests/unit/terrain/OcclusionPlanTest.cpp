@@ -59,34 +59,5 @@ TEST(OcclusionPlan, BoxesAtTheNearPlaneOrAroundTheEyeAreNotTested) {
         OcclusionPlan::queryBox(cam, {glm::dvec3(-50, -900, 0), glm::dvec3(50, -800, 50)}, 1.0));
 }
 
-TEST(OcclusionPlan, OnlyBoxesBehindAnOccluderBoxMayBeHidden) {
-    const math::Camera cam = lookingNorth();  // eye 100 m up
-    const math::Aabb farTile{glm::dvec3(-100, 5000, 0), glm::dvec3(100, 5200, 50)};
-    const auto box = OcclusionPlan::queryBox(cam, farTile, 1.0);
-    ASSERT_TRUE(box);
-    EXPECT_FALSE(OcclusionPlan::mayBeHidden(cam, *box, {})) << "nothing drawn before it";
-    // A low tile in front: every sight line passes above it.
-    const math::Aabb flat{glm::dvec3(-500, 1000, 0), glm::dvec3(500, 1500, 20)};
-    EXPECT_FALSE(OcclusionPlan::mayBeHidden(cam, *box, std::vector<math::Aabb>{flat}));
-    // A ridge in front, higher than the eye: every sight line meets it.
-    const math::Aabb ridge{glm::dvec3(-3000, 1000, 0), glm::dvec3(3000, 1500, 400)};
-    EXPECT_TRUE(OcclusionPlan::mayBeHidden(cam, *box, std::vector<math::Aabb>{flat, ridge}));
-    // A narrow peak in front covers only some sight lines: the others see the box.
-    const math::Aabb peak{glm::dvec3(-10, 1000, 0), glm::dvec3(10, 1040, 400)};
-    EXPECT_FALSE(OcclusionPlan::mayBeHidden(cam, *box, std::vector<math::Aabb>{peak}));
-    // Behind the eye an occluder box hides nothing.
-    const math::Aabb behind{glm::dvec3(-3000, -1500, 0), glm::dvec3(3000, -1000, 400)};
-    EXPECT_FALSE(OcclusionPlan::mayBeHidden(cam, *box, std::vector<math::Aabb>{behind}));
-}
-
-TEST(OcclusionPlan, ABoxOutsideTheViewIsLeftToItsQuery) {
-    // No point of its top face is on screen: nothing proves it visible.
-    const math::Camera cam = lookingNorth();
-    const math::Aabb aside{glm::dvec3(40000, 5000, 0), glm::dvec3(40200, 5200, 50)};
-    const auto box = OcclusionPlan::queryBox(cam, aside, 1.0);
-    ASSERT_TRUE(box);
-    EXPECT_TRUE(OcclusionPlan::mayBeHidden(cam, *box, {}));
-}
-
 }  // namespace
 }  // namespace kiosk::terrain
