@@ -1,10 +1,12 @@
 #include "runtime/io/FramePng.h"
 
 #include <algorithm>
-#include <array>
 #include <cstring>
+#include <initializer_list>
+#include <memory>
 #include <string>
 #include <thread>
+#include <utility>
 #include <zlib.h>
 
 namespace kiosk::io {
@@ -30,38 +32,65 @@ void filterRows(const std::uint8_t* rgba, int width, int y0, int y1, std::uint8_
     }
 }
 
+/** A stripe's raw deflate stream (no zlib header or trailer) and the Adler-32 of its rows. */
+struct Stripe {
+    std::unique_ptr<std::uint8_t[]> bytes;  // not zeroed: only the pages written count as RSS
+    std::size_t size = 0;
+    uLong adler = 0;
+    bool ok = false;
+};
+
 /**
- * Raw deflate of `data` (no zlib header or trailer); a stripe that is not the last ends with a
- * sync flush (byte-aligned, not final), the last one with the final block. False on a zlib error.
+ * Filter rows [y0, y1) a few at a time (a small buffer instead of the stripe's 3 MB) and deflate
+ * them raw; a stripe that is not the last ends with a sync flush (byte-aligned, not final), the
+ * last with the final block. `dictionary`: the bytes the stream continues (deflate's window).
  */
-bool deflateStripe(const std::vector<std::uint8_t>& data, const std::uint8_t* dictionary,
-                   std::size_t dictionarySize, bool last, std::vector<std::uint8_t>& out) {
+Stripe deflateStripe(const std::uint8_t* rgba, int width, int y0, int y1,
+                     const std::vector<std::uint8_t>& dictionary, bool last) {
+    Stripe out;
+    out.adler = adler32(0, nullptr, 0);
     z_stream z{};
-    if (deflateInit2(&z, kLevel, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) return false;
-    bool ok =
-        dictionarySize == 0 || deflateSetDictionary(&z, dictionary, uInt(dictionarySize)) == Z_OK;
-    out.resize(deflateBound(&z, uLong(data.size())) + 16);
-    z.next_in = const_cast<Bytef*>(data.data());
-    z.avail_in = uInt(data.size());
-    z.next_out = out.data();
-    z.avail_out = uInt(out.size());
-    if (ok) ok = deflate(&z, last ? Z_FINISH : Z_SYNC_FLUSH) == (last ? Z_STREAM_END : Z_OK);
-    ok = ok && z.avail_in == 0;
-    out.resize(out.size() - z.avail_out);
+    if (deflateInit2(&z, kLevel, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) return out;
+    const std::size_t stride = std::size_t(width) * 3 + 1;
+    const std::size_t bound = deflateBound(&z, uLong(stride * std::size_t(y1 - y0))) + 64;
+    out.bytes.reset(new std::uint8_t[bound]);
+    z.next_out = out.bytes.get();
+    z.avail_out = uInt(bound);
+    bool ok = dictionary.empty() ||
+              deflateSetDictionary(&z, dictionary.data(), uInt(dictionary.size())) == Z_OK;
+    constexpr int kRows = 16;
+    std::vector<std::uint8_t> rows(stride * kRows);
+    for (int y = y0; ok && y < y1; y += kRows) {
+        const int n = std::min(kRows, y1 - y);
+        filterRows(rgba, width, y, y + n, rows.data());
+        const uInt bytes = uInt(stride * std::size_t(n));
+        out.adler = adler32(out.adler, rows.data(), bytes);
+        z.next_in = rows.data();
+        z.avail_in = bytes;
+        const bool end = y + n == y1;
+        const int flush = !end ? Z_NO_FLUSH : last ? Z_FINISH : Z_SYNC_FLUSH;
+        const int rc = deflate(&z, flush);
+        ok = (rc == Z_OK || (rc == Z_STREAM_END && flush == Z_FINISH)) && z.avail_in == 0;
+    }
+    out.size = bound - z.avail_out;
+    out.ok = ok;
     deflateEnd(&z);
-    return ok;
+    return out;
 }
 
 void put32(std::vector<std::uint8_t>& v, std::uint32_t x) {
     for (int s = 24; s >= 0; s -= 8) v.push_back(std::uint8_t(x >> s));
 }
 
-void chunk(std::vector<std::uint8_t>& png, const char* type, const std::uint8_t* data,
-           std::size_t size) {
+/** A PNG chunk whose data is the concatenation of `parts`. */
+void chunk(std::vector<std::uint8_t>& png, const char* type,
+           std::initializer_list<std::pair<const std::uint8_t*, std::size_t>> parts) {
+    std::size_t size = 0;
+    for (const auto& [p, n] : parts) size += n;
     put32(png, std::uint32_t(size));
     const std::size_t start = png.size();
     png.insert(png.end(), type, type + 4);
-    png.insert(png.end(), data, data + size);
+    for (const auto& [p, n] : parts) png.insert(png.end(), p, p + n);
     put32(png, std::uint32_t(crc32(0, png.data() + start, uInt(size + 4))));
 }
 
@@ -78,46 +107,42 @@ Result<std::vector<std::uint8_t>> encodeFramePng(const std::uint8_t* rgba, int w
         return d;
     }
     const int split = height / 2;
-    std::array<std::vector<std::uint8_t>, 2> rows, packed;
-    rows[0].resize(stride * std::size_t(split));
-    rows[1].resize(stride * std::size_t(height - split));
-    bool ok1 = false;
-    std::thread second([&] {
-        filterRows(rgba, width, split, height, rows[1].data());
-        // The first stripe's last rows are its dictionary: filtered here from the same pixels.
+    Stripe first, second;
+    std::thread worker([&] {
+        // The first stripe's last 32 KiB of scanlines are the second's dictionary: filtered
+        // here from the same pixels, so the stripes need not wait for each other.
         const int dictRows = std::min<int>(split, int((kWindow + stride - 1) / stride));
         std::vector<std::uint8_t> dict(stride * std::size_t(dictRows));
         filterRows(rgba, width, split - dictRows, split, dict.data());
-        const std::size_t n = std::min(kWindow, dict.size());
-        ok1 = deflateStripe(rows[1], dict.data() + dict.size() - n, n, true, packed[1]);
+        dict.erase(dict.begin(), dict.end() - std::ptrdiff_t(std::min(kWindow, dict.size())));
+        second = deflateStripe(rgba, width, split, height, dict, true);
     });
-    filterRows(rgba, width, 0, split, rows[0].data());
-    const bool ok0 = split == 0 || deflateStripe(rows[0], nullptr, 0, false, packed[0]);
-    second.join();
-    if (!ok0 || !ok1) {
+    first = deflateStripe(rgba, width, 0, split, {}, false);
+    worker.join();
+    if (!first.ok || !second.ok) {
         d.error("IMAGE_ENCODE", "", "", "png encode: deflate failed");
         return d;
     }
     const uLong adler =
-        adler32_combine(adler32(adler32(0, nullptr, 0), rows[0].data(), uInt(rows[0].size())),
-                        adler32(adler32(0, nullptr, 0), rows[1].data(), uInt(rows[1].size())),
-                        z_off_t(rows[1].size()));
-    std::vector<std::uint8_t> idat;
-    idat.reserve(2 + packed[0].size() + packed[1].size() + 4);
-    idat.push_back(0x78);  // deflate, 32 KiB window
-    idat.push_back(0x5e);  // FLEVEL 1 (fast), header check: 0x785e % 31 == 0
-    idat.insert(idat.end(), packed[0].begin(), packed[0].end());
-    idat.insert(idat.end(), packed[1].begin(), packed[1].end());
-    put32(idat, std::uint32_t(adler));
+        adler32_combine(first.adler, second.adler, z_off_t(stride * std::size_t(height - split)));
     std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    png.reserve(png.size() + idat.size() + 64);
+    png.reserve(8 + 25 + 12 + 6 + first.size + second.size + 12);
     std::vector<std::uint8_t> ihdr;
     put32(ihdr, std::uint32_t(width));
     put32(ihdr, std::uint32_t(height));
     ihdr.insert(ihdr.end(), {8, 2, 0, 0, 0});  // 8-bit RGB, deflate, adaptive filters, no interlace
-    chunk(png, "IHDR", ihdr.data(), ihdr.size());
-    chunk(png, "IDAT", idat.data(), idat.size());
-    chunk(png, "IEND", nullptr, 0);
+    chunk(png, "IHDR", {{ihdr.data(), ihdr.size()}});
+    std::vector<std::uint8_t> trailer;
+    put32(trailer, std::uint32_t(adler));
+    // One IDAT: the zlib header (deflate, 32 KiB window, FLEVEL 1 as zlib writes for level 2;
+    // 0x785e is a multiple of 31), both stripes, the Adler-32 of all scanlines.
+    const std::uint8_t header[2] = {0x78, 0x5e};
+    chunk(png, "IDAT",
+          {{header, 2},
+           {first.bytes.get(), first.size},
+           {second.bytes.get(), second.size},
+           {trailer.data(), trailer.size()}});
+    chunk(png, "IEND", {});
     return png;
 }
 
