@@ -5,6 +5,7 @@
 #include <initializer_list>
 #include <memory>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <utility>
 #include <zlib.h>
@@ -108,7 +109,7 @@ Result<std::vector<std::uint8_t>> encodeFramePng(const std::uint8_t* rgba, int w
     }
     const int split = height / 2;
     Stripe first, second;
-    std::thread worker([&] {
+    auto secondStripe = [&] {
         // The first stripe's last 32 KiB of scanlines are the second's dictionary: filtered
         // here from the same pixels, so the stripes need not wait for each other.
         const int dictRows = std::min<int>(split, int((kWindow + stride - 1) / stride));
@@ -116,9 +117,15 @@ Result<std::vector<std::uint8_t>> encodeFramePng(const std::uint8_t* rgba, int w
         filterRows(rgba, width, split - dictRows, split, dict.data());
         dict.erase(dict.begin(), dict.end() - std::ptrdiff_t(std::min(kWindow, dict.size())));
         second = deflateStripe(rgba, width, split, height, dict, true);
-    });
+    };
+    std::thread worker;
+    try {
+        worker = std::thread(secondStripe);
+    } catch (const std::system_error&) {
+        secondStripe();  // no thread to be had: the same bytes, one stripe after the other
+    }
     first = deflateStripe(rgba, width, 0, split, {}, false);
-    worker.join();
+    if (worker.joinable()) worker.join();
     if (!first.ok || !second.ok) {
         d.error("IMAGE_ENCODE", "", "", "png encode: deflate failed");
         return d;
