@@ -24,7 +24,7 @@
 #include "runtime/core/Strings.h"
 #include "runtime/gl/RenderTarget.h"
 
-#include "bench/common/HeadlessGl.h"
+#include "bench/common/BenchScene.h"
 #include "bench/common/PhaseTimes.h"
 #include <nlohmann/json.hpp>
 
@@ -142,16 +142,10 @@ int main(int argc, char** argv) {
             return 2;
         }
     }
-    auto gl = bench::openHeadlessGl();
-    if (!gl) return 3;
-    auto opened = app::Session::open(scenario, gl->caps);
-    if (!opened) {
-        std::fprintf(stderr, "%s\n", opened.diagnostics.format().c_str());
-        return 1;
-    }
-    app::Session& s = **opened;
-    auto rt = gl::RenderTarget::create(width, height);
-    if (!rt) return 3;
+    auto scene = bench::openBenchScene(scenario, width, height);
+    if (!scene) return scene.exitCode;
+    app::Session& s = scene.s();
+    gl::RenderTarget& rt = *scene.target;
     // The demo's first `frames` frames at `fps` of playback (its clock rate), as `render` does.
     const double rate = s.scenario().clock ? std::fabs(s.scenario().clock->rate) : 1.0;
     std::vector<double> times;
@@ -182,7 +176,7 @@ int main(int argc, char** argv) {
     samePriority.encoderNice = 0;
 
     const double loadBefore = loadAverage();
-    pass(s, *rt, times, Output::None, {}, vo);  // warm-up: every pass then finds the same tiles
+    pass(s, rt, times, Output::None, {}, vo);  // warm-up: every pass then finds the same tiles
     // --passes word, reported name, what is done after drawing each frame.
     const std::tuple<const char*, const char*, Output, const video::VideoOptions*> kinds[] = {
         {"render", "render_only", Output::None, &vo},
@@ -198,7 +192,7 @@ int main(int argc, char** argv) {
             if (("," + passes + ",").find(std::string(",") + word + ",") == std::string::npos)
                 continue;
             if (kind == Output::VideoPrevious && vo.format != video::VideoFormat::H264Mp4) continue;
-            const PassTime p = pass(s, *rt, times, kind, dir / "png", *options);
+            const PassTime p = pass(s, rt, times, kind, dir / "png", *options);
             auto it = best.find(name);
             if (it == best.end() || p.wall < it->second.wall) best[name] = p;
             if (options == &vo && kind == Output::Video)

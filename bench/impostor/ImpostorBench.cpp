@@ -18,7 +18,7 @@
 #include "runtime/render/FillBound.h"
 
 #include "bench/common/BenchArgs.h"
-#include "bench/common/HeadlessGl.h"
+#include "bench/common/BenchScene.h"
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -91,17 +91,10 @@ int main(int argc, char** argv) {
     const std::string& scenario = args.scenario;
     std::vector<math::Viewpoint>& views = args.views;
     const int w = args.width, h = args.height, frames = args.frames, passes = args.passes;
-    auto headless = bench::openHeadlessGl();
-    if (!headless) return 3;
-    auto target = gl::RenderTarget::create(w, h);
-    if (!target) return 3;
-    target->bind();
-    auto session = app::Session::open(scenario, headless->caps);
-    if (!session) {
-        std::fprintf(stderr, "%s", session.diagnostics.format().c_str());
-        return 1;
-    }
-    app::Session& s = **session;
+    auto scene = bench::openBenchScene(scenario, w, h);
+    if (!scene) return scene.exitCode;
+    const gl::RenderTarget& target = *scene.target;
+    app::Session& s = scene.s();
     auto quad = render::FillBound::create(1);
     if (!quad) {
         std::fprintf(stderr, "%s", quad.diagnostics.format().c_str());
@@ -112,7 +105,7 @@ int main(int argc, char** argv) {
     nlohmann::json out;
     out["benchmark"] = "impostor";
     out["scenario"] = scenario;
-    out["renderer"] = headless->caps.renderer;
+    out["renderer"] = scene.gl.caps.renderer;
     out["size"] = std::to_string(w) + "x" + std::to_string(h);
     out["frames_per_pass"] = frames;
     out["passes"] = passes;
@@ -132,7 +125,7 @@ int main(int argc, char** argv) {
         }
         s.drawFrame(cam, s.startTime(), w, h);
         timeFrames(s, cam, w, h, 1);
-        const long long paintedAll = paintedPixels(target->readColor());
+        const long long paintedAll = paintedPixels(target.readColor());
         const scene::SceneFrameInfo allInfo = s.terrain().frameInfo();
         nlohmann::json v;
         v["view"] = {vp.target.x, vp.target.y, vp.target.z, vp.headingDeg, vp.pitchDeg, vp.range};
@@ -142,7 +135,7 @@ int main(int argc, char** argv) {
             nearCam.farPlane = std::max(d, nearCam.nearPlane * 2.0);
             timeFrames(s, nearCam, w, h, 1);
             const long long farPixels =
-                std::max(0LL, paintedAll - paintedPixels(target->readColor()));
+                std::max(0LL, paintedAll - paintedPixels(target.readColor()));
             const scene::SceneFrameInfo nearInfo = s.terrain().frameInfo();
             // Alternating passes: this VM's load swings hit both alike; the best frames count.
             std::vector<double> allMs, nearMs;

@@ -14,7 +14,10 @@ baseline binary (an older build, e.g. main's first commit) when --baseline is gi
                median of 3 runs after one unmeasured run; cold (first_frame_cold_s): one run
                after the binary, its libraries, Mesa's driver and the demo store were dropped
                from the page cache (posix_fadvise DONTNEED: this process's files only, nothing
-               machine-wide) with an empty Mesa shader cache
+               machine-wide) with an empty Mesa shader cache. Both binaries read the same demo
+               store (data/generated, made by tools/prepare-demo.sh with the current importer), so
+               a gain from the store (e.g. stored mesh tiers) shows in both; compare stores with a
+               scenario copy naming each store
 
 Peak RSS is the kernel's ru_maxrss of the process; peak PSS is the largest Pss of
 /proc/PID/smaps_rollup sampled every 20 ms (shared libraries counted by share). Frame rate is

@@ -13,7 +13,7 @@
 #include "runtime/gl/RenderTarget.h"
 
 #include "bench/common/BenchArgs.h"
-#include "bench/common/HeadlessGl.h"
+#include "bench/common/BenchScene.h"
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -68,17 +68,9 @@ int main(int argc, char** argv) {
     const std::string& scenario = args.scenario;
     std::vector<math::Viewpoint>& views = args.views;
     const int w = args.width, h = args.height, perPass = args.frames, passes = args.passes;
-    auto headless = bench::openHeadlessGl();
-    if (!headless) return 3;
-    auto target = gl::RenderTarget::create(w, h);
-    if (!target) return 3;
-    target->bind();
-    auto session = app::Session::open(scenario, headless->caps);
-    if (!session) {
-        std::fprintf(stderr, "%s", session.diagnostics.format().c_str());
-        return 1;
-    }
-    app::Session& s = **session;
+    auto scene = bench::openBenchScene(scenario, w, h);
+    if (!scene) return scene.exitCode;
+    app::Session& s = scene.s();
     const math::Aabb b = s.terrain().bounds();
     if (views.empty()) {
         const glm::dvec3 c = b.center();
@@ -90,7 +82,7 @@ int main(int argc, char** argv) {
     nlohmann::json out;
     out["benchmark"] = "occlusion";
     out["scenario"] = scenario;
-    out["renderer"] = headless->caps.renderer;
+    out["renderer"] = scene.gl.caps.renderer;
     out["size"] = std::to_string(w) + "x" + std::to_string(h);
     out["frames_per_pass"] = perPass;
     out["passes"] = passes;

@@ -12,7 +12,7 @@
 #include "runtime/wall/SwapBarrier.h"
 #include "runtime/wall/ZmqTransport.h"
 
-#include "bench/common/HeadlessGl.h"
+#include "bench/common/BenchScene.h"
 #include "bench/common/SteadyTime.h"
 #include <nlohmann/json.hpp>
 
@@ -137,17 +137,9 @@ int main(int argc, char** argv) {
 
     // Baseline: one node's frame on the demo (tiles resident, time moving).
     {
-        auto gl = bench::openHeadlessGl();
-        if (!gl) return 3;
-        auto session = app::Session::open(argv[1], gl->caps);
-        if (!session) {
-            std::fprintf(stderr, "%s", session.diagnostics.format().c_str());
-            return 1;
-        }
-        auto target = gl::RenderTarget::create(width, height);
-        if (!target) return 3;
-        target->bind();
-        app::Session& s = **session;
+        auto scene = bench::openBenchScene(argv[1], width, height);
+        if (!scene) return scene.exitCode;
+        app::Session& s = scene.s();
         const auto vp = s.viewpointAt(s.startTime(), "");
         const math::Camera cam = app::makeCamera(vp ? *vp : s.terrain().overviewViewpoint(),
                                                  s.terrain().bounds(), width, height, 45.0);

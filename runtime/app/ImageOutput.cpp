@@ -1,6 +1,6 @@
 #include "runtime/app/ImageOutput.h"
 
-#include "runtime/io/ImageCodec.h"
+#include "runtime/io/FramePng.h"
 
 #include <cstdio>
 #include <vector>
@@ -9,15 +9,9 @@ namespace kiosk::app {
 
 bool writePng(const std::filesystem::path& path, const gl::Image& image, Diagnostics& diags) {
     const std::filesystem::path tmp = path.string() + ".tmp.png";
-    std::vector<std::uint8_t> rgb(std::size_t(image.width) * std::size_t(image.height) * 3);
-    for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i) {
-        rgb[i * 3 + 0] = image.rgba[i * 4 + 0];
-        rgb[i * 3 + 1] = image.rgba[i * 4 + 1];
-        rgb[i * 3 + 2] = image.rgba[i * 4 + 2];
-    }
-    // Written for speed (zlib level 2, Sub filter): a 1080p frame in 0.07 s instead of 0.69 s at
-    // level 6, 9 % larger. It was most of a one-frame render's time (docs/performance.md §5).
-    auto png = io::encodePng8Fast(rgb.data(), image.width, image.height, 3);
+    // Written for speed (Sub filter, zlib level 2, two stripes on two threads): it was most of a
+    // one-frame render's time at level 6 (docs/performance.md §5.2).
+    auto png = io::encodeFramePng(image.rgba.data(), image.width, image.height);
     if (!png) {
         const Diagnostic* e = png.diagnostics.firstError();
         diags.error("OUTPUT_WRITE", path.string(), "",

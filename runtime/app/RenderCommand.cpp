@@ -7,6 +7,7 @@
 #include "runtime/app/FrameStats.h"
 #include "runtime/app/Report.h"
 #include "runtime/app/Session.h"
+#include "runtime/app/StartupPhases.h"
 #include "runtime/app/WallScreen.h"
 #include "runtime/core/Clock.h"
 #include "runtime/core/ExitCode.h"
@@ -67,6 +68,8 @@ bool drawWarmUp(Session& s, const math::Camera& cam, double time, int width, int
 }  // namespace
 
 int runRenderCommand(const std::vector<std::string>& argv) {
+    StartupPhases phases;  // GEOKIOSK_LOG=debug: when each step of the first frame ended
+    phases.mark("main");
     Args args("render",
               {"out", "time", "from", "to", "fps", "size", "viewpoint", "stats", "reference", "crf",
                "preset", "wall", "screen", "occlusion-culling"},
@@ -180,6 +183,7 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         printDiagnostics(caps.diagnostics);
         return kExitCannotRun;
     }
+    phases.mark("display");
     auto scenario = checked.get();
     if (!scenario) {
         printDiagnostics(scenario.diagnostics);
@@ -199,11 +203,13 @@ int runRenderCommand(const std::vector<std::string>& argv) {
         printDiagnostics(session.diagnostics);
         return kExitBadInput;
     }
+    phases.mark("session");
     auto target = gl::RenderTarget::create(width, height);
     if (!target) {
         printDiagnostics(target.diagnostics);
         return kExitCannotRun;
     }
+    phases.mark("target");
     Session& s = **session;
     if (wallScreen) s.setOverlayLayout(wallScreen->overlayLayout());
     std::vector<double> times;
@@ -306,15 +312,27 @@ int runRenderCommand(const std::vector<std::string>& argv) {
             }
             std::this_thread::sleep_for(std::chrono::milliseconds(1));
         }
+        if (i == 0) phases.mark("settled");
         const double t0 = clock.now();
         FrameRecord rec = s.drawFrame(cam, times[i], width, height);
         glFinish();
         rec.frameMs = (clock.now() - t0) * 1000.0;
         stats.add(rec);
+        if (i == 0) phases.mark("drawn");
         Diagnostics d;
         if (!output->write(*target, d)) {
             printDiagnostics(d);
             return kExitBadInput;
+        }
+        if (i == 0) {
+            phases.mark("written");
+            phases.log(kTag);
+            const scene::SceneFrameInfo& f = s.terrain().frameInfo();
+            KIOSK_LOG_DEBUG(kTag,
+                            "first frame: %u tiles drawn, %u occluded; occlusion: %u rounds, %u "
+                            "queries, %.1f ms",
+                            f.tilesDrawn, f.tilesOccluded, f.occlusionRounds, f.occlusionQueries,
+                            f.occlusionMs);
         }
         progress.advance();
     }

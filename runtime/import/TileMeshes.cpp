@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <thread>
 #include <vector>
 
@@ -27,32 +28,57 @@ struct TileJob {
     Diagnostics diagnostics;
 };
 
+/**
+ * Mesh `job.posts` at tolerance tier `tier`; append it unless it has more than `maxVertices`
+ * (tier 0: with split tiers when `exact`). False on an error (in job.diagnostics).
+ */
+bool meshTier(TileJob& job, const io::TileGrid& grid, const terrain::TerrainOptions& options,
+              double zStep, int tier, bool exact, std::size_t maxVertices,
+              terrain::RtinMesher& mesher, terrain::TileMesh& mesh) {
+    terrain::MeshParams p = terrain::MeshParams::forTile(
+        grid, job.posts.id, options, double(job.posts.stats.geometricError), tier);
+    p.skirtDepth = 0.0;  // skirts depend on the run; the loader adds them
+    Diagnostics d = mesher.build(job.posts, p, mesh);
+    if (d.hasErrors()) {
+        job.diagnostics = std::move(d);
+        return false;
+    }
+    if (mesh.vertexCount() > maxVertices) return true;
+    auto q = terrain::quantizeSurface(mesh, zStep);
+    if (!q) {
+        job.diagnostics = std::move(q.diagnostics);
+        return false;
+    }
+    if (exact) q->splitTiers = terrain::splitTiersOf(mesher, p.tolerance);
+    job.tiers.push_back({tier, p.tolerance, mesh.vertexCount(), mesh.triangleCount(), exact,
+                         io::encodeMeshBlob(*q)});
+    return true;
+}
+
 void meshTile(TileJob& job, const io::TileGrid& grid, const terrain::TerrainOptions& options,
               double zStep, terrain::RtinMesher& mesher, terrain::TileMesh& mesh) {
     const bool nodata = std::any_of(job.posts.values.begin(), job.posts.values.end(),
                                     [](float v) { return std::isnan(v); });
     // Without nodata every coarser tier follows from tier 0 and its vertices' split tiers (exact
     // split errors). Next to nodata a split can hinge on a post that is no vertex: such tiles
-    // keep tier 0 only and their coarser tiers are meshed on load (storing each tier whole
-    // made the demo store 5.7 times larger).
+    // keep their coarser tiers whole, each meshed as the loader would mesh it, else the loader
+    // meshes them from the posts on every start (the demo's distant tiles, 20-50 ms each;
+    // docs/performance.md §5.2). Only tiers with at most half of tier 0's vertices: every tier
+    // made the demo store 2.5 times larger (21 -> 52 MB), these 1.27 times (27 MB), and the
+    // finer ones are the nearby tiles' (tier 0 derived or meshed on load, as before).
     mesher.setExactErrors(!nodata);
-    terrain::MeshParams p = terrain::MeshParams::forTile(grid, job.posts.id, options,
-                                                         double(job.posts.stats.geometricError), 0);
-    p.skirtDepth = 0.0;  // skirts depend on the run; the loader adds them
-    Diagnostics d = mesher.build(job.posts, p, mesh);
+    const std::size_t any = std::numeric_limits<std::size_t>::max();
+    if (!meshTier(job, grid, options, zStep, 0, !nodata, any, mesher, mesh) || !nodata) {
+        job.posts.values = {};
+        return;
+    }
+    const std::size_t half = job.tiers.front().vertices / 2;
+    for (int tier = 1; tier <= options.maxToleranceTier(); ++tier)
+        if (!meshTier(job, grid, options, zStep, tier, false, half, mesher, mesh)) {
+            job.tiers.clear();  // a tile keeps all its tiers or none
+            break;
+        }
     job.posts.values = {};
-    if (d.hasErrors()) {
-        job.diagnostics = std::move(d);
-        return;
-    }
-    auto q = terrain::quantizeSurface(mesh, zStep);
-    if (!q) {
-        job.diagnostics = std::move(q.diagnostics);
-        return;
-    }
-    if (!nodata) q->splitTiers = terrain::splitTiersOf(mesher, p.tolerance);
-    job.tiers.push_back({0, p.tolerance, mesh.vertexCount(), mesh.triangleCount(), !nodata,
-                         io::encodeMeshBlob(*q)});
 }
 
 }  // namespace

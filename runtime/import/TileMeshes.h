@@ -11,7 +11,7 @@ namespace kiosk::import {
 /** @brief What storeTileMeshes wrote. */
 struct TileMeshStats {
     std::int64_t tiles = 0;      ///< tiles with stored meshes
-    std::int64_t rows = 0;       ///< mesh rows (one per tile today; the table allows tiers)
+    std::int64_t rows = 0;       ///< mesh rows (one per tile, more for tiles with nodata)
     std::int64_t skipped = 0;    ///< tiles left to be meshed on load (heights not quantisable)
     std::int64_t blobBytes = 0;  ///< compressed bytes over all rows
 };
@@ -21,7 +21,9 @@ struct TileMeshStats {
  * every tile is simplified as the loader would simplify it (RTIN with the default
  * TerrainOptions' tolerance of its stored error) and its surface is kept compressed in
  * kiosk_tile_meshes: tier 0 with each vertex's split tier, from which the loader derives every
- * coarser tolerance tier; tiles with nodata (where that does not hold) keep tier 0 only. The loader
+ * coarser tolerance tier; tiles with nodata (where that does not hold) keep tier 0 and each
+ * coarser tier with at most half of tier 0's vertices whole, meshed from the posts as the loader
+ * would mesh them. The loader
  * then decodes instead of meshing whenever it asks for one of these tolerances (a run with other
  * TerrainOptions meshes on load as before). Tiles are read from the store (the posts exactly as the
  * loader decodes them) on the calling thread, meshed and compressed on `threads` threads.

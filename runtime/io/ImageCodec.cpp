@@ -27,7 +27,7 @@ struct TjFree {
 using TjHandle = std::unique_ptr<void, TjFree>;
 
 Result<std::vector<std::uint8_t>> encodePng(const void* pixels, int width, int height, int channels,
-                                            int bitDepth, int level, int filter = -1) {
+                                            int bitDepth, int level) {
     Diagnostics d;
     static constexpr std::uint8_t kColorType[5] = {
         0, SPNG_COLOR_TYPE_GRAYSCALE, SPNG_COLOR_TYPE_GRAYSCALE_ALPHA, SPNG_COLOR_TYPE_TRUECOLOR,
@@ -52,7 +52,6 @@ Result<std::vector<std::uint8_t>> encodePng(const void* pixels, int width, int h
                               std::size_t(bitDepth / 8);
     int err = spng_set_option(ctx.get(), SPNG_ENCODE_TO_BUFFER, 1);
     if (!err && level >= 0) err = spng_set_option(ctx.get(), SPNG_IMG_COMPRESSION_LEVEL, level);
-    if (!err && filter >= 0) err = spng_set_option(ctx.get(), SPNG_FILTER_CHOICE, filter);
     if (!err) err = spng_set_ihdr(ctx.get(), &ihdr);
     // SPNG_FMT_PNG: samples as the PNG stores them, 16-bit ones in host byte order.
     if (!err) err = spng_encode_image(ctx.get(), pixels, bytes, SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE);
@@ -192,11 +191,6 @@ Result<std::vector<std::uint8_t>> encodePng16(const std::uint16_t* gray, int wid
 Result<std::vector<std::uint8_t>> encodePng8(const std::uint8_t* pixels, int width, int height,
                                              int channels, int compressionLevel) {
     return encodePng(pixels, width, height, channels, 8, compressionLevel);
-}
-
-Result<std::vector<std::uint8_t>> encodePng8Fast(const std::uint8_t* pixels, int width, int height,
-                                                 int channels) {
-    return encodePng(pixels, width, height, channels, 8, 2, SPNG_FILTER_CHOICE_SUB);
 }
 
 Result<std::vector<std::uint8_t>> encodeJpeg(const std::uint8_t* rgb, int width, int height,

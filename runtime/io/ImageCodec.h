@@ -33,13 +33,6 @@ Result<std::vector<std::uint8_t>> encodePng16(const std::uint16_t* gray, int wid
 /** @brief 8-bit PNG with 1..4 channels. */
 Result<std::vector<std::uint8_t>> encodePng8(const std::uint8_t* pixels, int width, int height,
                                              int channels, int compressionLevel);
-/**
- * @brief 8-bit PNG written for speed: zlib level 2 and the Sub filter on every row instead of
- * level 6 with a filter chosen per row. A 1920x1080 RGB frame: 0.07 s instead of 0.69 s, 9 %
- * larger (docs/performance.md §5); the pixels are the same.
- */
-Result<std::vector<std::uint8_t>> encodePng8Fast(const std::uint8_t* pixels, int width, int height,
-                                                 int channels);
 /** @brief Baseline JPEG, RGB (3 channels). */
 Result<std::vector<std::uint8_t>> encodeJpeg(const std::uint8_t* rgb, int width, int height,
                                              int quality);

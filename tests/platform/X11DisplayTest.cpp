@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <optional>
 #include <string>
 #include <thread>
@@ -152,6 +153,31 @@ protected:
         return std::move(*display.value);
     }
 
+    /** @brief A windowed kiosk and a second X client (the user) that has found its window. */
+    struct UserWindow {
+        std::unique_ptr<Display> display;
+        std::unique_ptr<Observer> user;
+        Window window = 0;
+    };
+    UserWindow openWithUser(int width, int height) {
+        UserWindow u;
+        u.display = create(true, width, height);
+        if (!u.display) return u;
+        u.user = std::make_unique<Observer>(mServer.display());
+        EXPECT_TRUE(u.user->ok());
+        if (u.user->ok()) u.window = u.user->findKioskWindow();
+        return u;
+    }
+
+    /** @brief Poll the display's input every 10 ms, at most `tries` times, until `done(input)`. */
+    template <class Done>
+    static void pollUntil(Display& display, InputState& input, int tries, Done done) {
+        for (int i = 0; i < tries && !done(input); ++i) {
+            display.pollInput(input);
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+    }
+
     /** @brief Clear the window's back buffer, read it back with glReadPixels, check all of it. */
     void clearAndCheckBackBuffer(const Display& display, const Rgba& c) {
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -230,61 +256,40 @@ TEST_F(X11DisplayTest, FullscreenIgnoresRequestedSize) {
 }
 
 TEST_F(X11DisplayTest, WindowCloseRequestsQuit) {
-    auto display = create(true, 200, 100);
-    ASSERT_TRUE(display);
-    Observer user(mServer.display());
-    ASSERT_TRUE(user.ok());
-    const Window w = user.findKioskWindow();
+    auto [display, user, w] = openWithUser(200, 100);
     ASSERT_NE(w, Window(0));
-    user.sendDeleteWindow(w);
+    user->sendDeleteWindow(w);
     InputState input;
-    for (int i = 0; i < 100 && !input.quitRequested; ++i) {
-        display->pollInput(input);
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
+    pollUntil(*display, input, 100, [](const InputState& in) { return in.quitRequested; });
     EXPECT_TRUE(input.quitRequested);
 }
 
 TEST_F(X11DisplayTest, EscapeAndQRequestQuitOtherKeysDoNot) {
-    auto display = create(true, 200, 100);
-    ASSERT_TRUE(display);
-    Observer user(mServer.display());
-    ASSERT_TRUE(user.ok());
-    const Window w = user.findKioskWindow();
+    auto [display, user, w] = openWithUser(200, 100);
     ASSERT_NE(w, Window(0));
 
     const auto pump = [&](InputState& input) {
-        for (int i = 0; i < 20; ++i) {
-            display->pollInput(input);
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        }
+        pollUntil(*display, input, 20, [](const InputState&) { return false; });
     };
     InputState other;
-    user.sendKey(w, XK_a);
+    user->sendKey(w, XK_a);
     pump(other);
     EXPECT_FALSE(other.quitRequested);
 
     for (KeySym sym : {KeySym(XK_Escape), KeySym(XK_q)}) {
         InputState input;
-        user.sendKey(w, sym);
+        user->sendKey(w, sym);
         pump(input);
         EXPECT_TRUE(input.quitRequested) << XKeysymToString(sym);
     }
 }
 
 TEST_F(X11DisplayTest, ResizeIsTracked) {
-    auto display = create(true, 320, 240);
-    ASSERT_TRUE(display);
-    Observer user(mServer.display());
-    ASSERT_TRUE(user.ok());
-    const Window w = user.findKioskWindow();
+    auto [display, user, w] = openWithUser(320, 240);
     ASSERT_NE(w, Window(0));
-    user.resize(w, 400, 300);
+    user->resize(w, 400, 300);
     InputState input;
-    for (int i = 0; i < 100 && !input.resized; ++i) {
-        display->pollInput(input);
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
+    pollUntil(*display, input, 100, [](const InputState& in) { return in.resized; });
     EXPECT_TRUE(input.resized);
     EXPECT_EQ(display->width(), 400);
     EXPECT_EQ(display->height(), 300);
@@ -294,25 +299,18 @@ TEST_F(X11DisplayTest, ResizeIsTracked) {
     ASSERT_TRUE(display->swapBuffers());
     clearAndCheckBackBuffer(*display, c);
     ASSERT_TRUE(display->swapBuffers());
-    EXPECT_EQ(user.waitForPixel(399, 299, c), c);
+    EXPECT_EQ(user->waitForPixel(399, 299, c), c);
 }
 
 TEST_F(X11DisplayTest, LensKeysAccumulateUntilCleared) {
     // The comparison lens keys of `play` (docs/cli.md): w/a/s/d, [ ], r, c.
-    auto display = create(true, 200, 100);
-    ASSERT_TRUE(display);
-    Observer user(mServer.display());
-    ASSERT_TRUE(user.ok());
-    const Window w = user.findKioskWindow();
+    auto [display, user, w] = openWithUser(200, 100);
     ASSERT_NE(w, Window(0));
     for (KeySym sym : {XK_d, XK_d, XK_w, XK_s, XK_s, XK_s, XK_a, XK_bracketright, XK_bracketright,
                        XK_bracketleft, XK_r, XK_c})
-        user.sendKey(w, sym);
+        user->sendKey(w, sym);
     InputState input;
-    for (int i = 0; i < 50 && !input.lensToggle; ++i) {
-        display->pollInput(input);
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
+    pollUntil(*display, input, 50, [](const InputState& in) { return in.lensToggle; });
     EXPECT_EQ(input.lensX, 1);
     EXPECT_EQ(input.lensY, -2);
     EXPECT_EQ(input.lensSize, 1);

@@ -6,6 +6,7 @@
 #include "runtime/import/Topographic.h"
 #include "runtime/io/StoreReader.h"
 #include "runtime/topo/NormalMap.h"
+#include "tests/unit/import/CfSequenceFile.h"
 #include "tests/unit/import/ImportTestSupport.h"
 
 #include <cpl_conv.h>
@@ -555,38 +556,17 @@ TEST(ImportSequence, GeoTiffFramesWithTimesCsvAndAppend) {
 TEST(ImportSequence, NetCdfWithCfTimeAxis) {
     const fs::path dir = testDir();
     const fs::path nc = dir / "depth.nc";
-    int id, dt, dy, dx, vt, vy, vx, vd;
-    ASSERT_EQ(nc_create(nc.c_str(), NC_CLOBBER, &id), NC_NOERR);
-    nc_def_dim(id, "time", 3, &dt);
-    nc_def_dim(id, "y", 20, &dy);
-    nc_def_dim(id, "x", 30, &dx);
-    nc_def_var(id, "time", NC_DOUBLE, 1, &dt, &vt);
-    nc_def_var(id, "y", NC_DOUBLE, 1, &dy, &vy);
-    nc_def_var(id, "x", NC_DOUBLE, 1, &dx, &vx);
-    const int dims[3] = {dt, dy, dx};
-    nc_def_var(id, "depth", NC_FLOAT, 3, dims, &vd);
-    const char* units = "hours since 2001-02-28 12:00:00";
-    nc_put_att_text(id, vt, "units", std::strlen(units), units);
-    nc_put_att_text(id, vt, "calendar", 6, "noleap");
-    nc_put_att_text(id, vx, "units", 1, "m");
-    nc_put_att_text(id, vy, "units", 1, "m");
-    nc_put_att_text(id, vx, "standard_name", 23, "projection_x_coordinate");
-    nc_put_att_text(id, vy, "standard_name", 23, "projection_y_coordinate");
-    const float fill = -999.f;
-    nc_put_att_float(id, vd, "_FillValue", NC_FLOAT, 1, &fill);
-    nc_enddef(id);
-    const double t[3] = {0, 12, 36};
-    double ys[20], xs[30];
-    for (int i = 0; i < 20; ++i) ys[i] = 1000 - 10 * i - 5;
-    for (int i = 0; i < 30; ++i) xs[i] = 10 * i + 5;
-    std::vector<float> v(3 * 20 * 30);
-    for (int k = 0; k < 3; ++k)
-        for (int i = 0; i < 600; ++i) v[std::size_t(k * 600 + i)] = float(k) + float(i % 30) * 0.1f;
-    nc_put_var_double(id, vt, t);
-    nc_put_var_double(id, vy, ys);
-    nc_put_var_double(id, vx, xs);
-    nc_put_var_float(id, vd, v.data());
-    nc_close(id);
+    CfSequenceFile f;
+    f.nx = 30;
+    f.ny = 20;
+    f.cell = 10;
+    f.top = 1000;
+    f.times = {0, 12, 36};
+    f.timeUnits = "hours since 2001-02-28 12:00:00";
+    f.calendar = "noleap";
+    f.fill = -999.f;
+    f.value = [](int k, int i) { return float(k) + float(i % 30) * 0.1f; };
+    f.write(nc);
 
     const fs::path store = dir / "s.gpkg";
     ImportOptions o = options(store);

@@ -98,10 +98,21 @@ TEST(StoredMeshImport, EveryTileHasAMeshTheLoaderDecodes) {
     const fs::path store = dir / "s.gpkg";
     const Diagnostics d = import::importElevation(makeMountainDem(dir).string(), options(store));
     ASSERT_FALSE(d.hasErrors()) << d.format();
-    // One row per tile (interior tiles derive their coarser tiers from it, tiles at the data's
-    // edge mesh those on load); registered as an extension.
+    // A tier-0 row per tile: interior tiles derive their coarser tiers from it (split tiers),
+    // tiles at the data's edge (nodata) keep the coarser tiers with at most half of tier 0's
+    // vertices whole (tier 10 always); registered as an extension.
     EXPECT_EQ(queryInt(store, "SELECT COUNT(*) FROM kiosk_tile_meshes WHERE tier = 0"), 14);
-    EXPECT_EQ(queryInt(store, "SELECT COUNT(*) FROM kiosk_tile_meshes"), 14);
+    const std::int64_t edge = queryInt(
+        store, "SELECT COUNT(*) FROM kiosk_tile_meshes WHERE tier = 0 AND split_tiers = 0");
+    EXPECT_GT(edge, 0);
+    EXPECT_LT(edge, 14);
+    EXPECT_EQ(queryInt(store, "SELECT COUNT(*) FROM kiosk_tile_meshes WHERE tier = 10"), edge);
+    EXPECT_EQ(queryInt(store,
+                       "SELECT COUNT(*) FROM kiosk_tile_meshes c JOIN kiosk_tile_meshes t0 USING "
+                       "(table_name, zoom_level, tile_column, tile_row) WHERE c.tier > 0 AND "
+                       "t0.tier = 0 AND (c.split_tiers = 1 OR t0.split_tiers = 1 OR "
+                       "c.vertex_count * 2 > t0.vertex_count)"),
+              0);
     EXPECT_EQ(queryInt(store,
                        "SELECT COUNT(*) FROM gpkg_extensions WHERE table_name = "
                        "'kiosk_tile_meshes' AND extension_name = 'kiosk_tile_meshes'"),
@@ -151,6 +162,38 @@ TEST(StoredMeshImport, DamagedMeshIsMeshedFromPostsAndNamed) {
     const std::string tables = io::checkStoreIntegrity(store, io::IntegrityLevel::Tables).format();
     EXPECT_NE(tables.find("meshes of tiles the table does not have"), std::string::npos) << tables;
     EXPECT_NE(tables.find("not registered in gpkg_extensions"), std::string::npos) << tables;
+}
+
+// An edge tile's coarser tier is read from its own row, not meshed from the posts: a damaged
+// tier-10 row is the warning that names it, and the posts give the same mesh.
+TEST(StoredMeshImport, EdgeTilesReadTheirCoarserTiersFromTheirOwnRows) {
+    const fs::path dir = freshTestDir("geokiosk-stored-mesh");
+    const fs::path store = dir / "s.gpkg";
+    ASSERT_FALSE(
+        import::importElevation(makeMountainDem(dir).string(), options(store)).hasErrors());
+    const std::string edge =
+        " FROM kiosk_tile_meshes WHERE tier = 10 AND zoom_level = 2 ORDER BY "
+        "tile_column DESC, tile_row DESC LIMIT 1";
+    const TileId id{2, int(queryInt(store, "SELECT tile_column" + edge)),
+                    int(queryInt(store, "SELECT tile_row" + edge))};
+    ASSERT_GE(id.column, 0);
+    const std::string name =
+        "elevation/2/" + std::to_string(id.column) + "/" + std::to_string(id.row);
+    const Loaded intact = load(store, id, 10);
+    ASSERT_TRUE(intact.stored.mesh);
+    EXPECT_TRUE(intact.stored.diagnostics.empty()) << intact.stored.diagnostics.format();
+    expectSameMesh(*intact.stored.mesh, *intact.built.mesh);
+    exec(store,
+         "UPDATE kiosk_tile_meshes SET mesh = substr(mesh, 1, 60) WHERE zoom_level = 2 AND "
+         "tile_column = " +
+             std::to_string(id.column) + " AND tile_row = " + std::to_string(id.row) +
+             " AND tier = 10");
+    const Loaded l = load(store, id, 10);
+    ASSERT_TRUE(l.stored.mesh);
+    expectSameMesh(*l.stored.mesh, *l.built.mesh);
+    ASSERT_EQ(l.stored.diagnostics.size(), 1u) << l.stored.diagnostics.format();
+    EXPECT_EQ(l.stored.diagnostics.items()[0].code, "STORE_MESH_CORRUPT");
+    EXPECT_EQ(l.stored.diagnostics.items()[0].where, name + " tier 10");
 }
 
 TEST(StoredMeshImport, StoresWithoutMeshesAreMeshedOnLoad) {

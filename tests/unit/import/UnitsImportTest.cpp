@@ -6,6 +6,7 @@
 #include "runtime/app/InfoCommand.h"
 #include "runtime/import/Importer.h"
 #include "runtime/io/StoreReader.h"
+#include "tests/unit/import/CfSequenceFile.h"
 #include "tests/unit/import/ImportTestSupport.h"
 
 #include <gdal.h>
@@ -16,7 +17,6 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
-#include <netcdf.h>
 #include <sstream>
 #include <unistd.h>
 #include <vector>
@@ -31,35 +31,12 @@ namespace {
 // A projected CF NetCDF rainfall sequence (2 steps, 10 x 8) with `units` (none when empty),
 // its time axis starting `startHour` hours into 2024.
 void writeRain(const fs::path& p, const std::string& units = "mm/h", int startHour = 0) {
-    int id, dt, dy, dx, vt, vy, vx, vr;
-    ASSERT_EQ(nc_create(p.c_str(), NC_CLOBBER, &id), NC_NOERR);
-    nc_def_dim(id, "time", 2, &dt);
-    nc_def_dim(id, "y", 8, &dy);
-    nc_def_dim(id, "x", 10, &dx);
-    nc_def_var(id, "time", NC_DOUBLE, 1, &dt, &vt);
-    nc_def_var(id, "y", NC_DOUBLE, 1, &dy, &vy);
-    nc_def_var(id, "x", NC_DOUBLE, 1, &dx, &vx);
-    const int dims[3] = {dt, dy, dx};
-    nc_def_var(id, "rain", NC_FLOAT, 3, dims, &vr);
-    const char* tu = "hours since 2024-01-01 00:00:00";
-    nc_put_att_text(id, vt, "units", std::strlen(tu), tu);
-    nc_put_att_text(id, vx, "units", 1, "m");
-    nc_put_att_text(id, vy, "units", 1, "m");
-    nc_put_att_text(id, vx, "standard_name", 23, "projection_x_coordinate");
-    nc_put_att_text(id, vy, "standard_name", 23, "projection_y_coordinate");
-    if (!units.empty()) nc_put_att_text(id, vr, "units", units.size(), units.data());
-    nc_enddef(id);
-    const double t[2] = {double(startHour), double(startHour + 1)};
-    double ys[8], xs[10];
-    for (int i = 0; i < 8; ++i) ys[i] = 800 - 100 * i - 50;
-    for (int i = 0; i < 10; ++i) xs[i] = 100 * i + 50;
-    std::vector<float> v(2 * 8 * 10);
-    for (std::size_t i = 0; i < v.size(); ++i) v[i] = float(i % 17);
-    nc_put_var_double(id, vt, t);
-    nc_put_var_double(id, vy, ys);
-    nc_put_var_double(id, vx, xs);
-    nc_put_var_float(id, vr, v.data());
-    nc_close(id);
+    CfSequenceFile f;
+    f.variable = "rain";
+    f.times = {double(startHour), double(startHour + 1)};
+    f.units = units;
+    f.value = [](int k, int i) { return float((k * 80 + i) % 17); };
+    f.write(p);
 }
 
 // `geokiosk info STORE` output (stdout redirected to a file through dup2, then restored).
