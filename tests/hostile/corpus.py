@@ -267,13 +267,18 @@ BOMB = png(60000, 60000, 16, 0, rows_bytes=bytes(8 << 20))
 STORE_CASES = [
     # The control: the demo store unchanged is valid to the deepest check and renders silently.
     ("unchanged", corrupt(), "", "", 0),
-    ("rgb8-in-elevation", corrupt("UPDATE elevation SET tile_data = ?", blob=png(256, 256, 8, 2)),
+    # The elevation cases drop the stored meshes too: the demo's stored meshes give every tier its
+    # view needs (coarse tiers of edge tiles included), so render would never decode the bad
+    # elevation tile; without them it meshes every tile from its posts.
+    ("rgb8-in-elevation", corrupt("UPDATE elevation SET tile_data = ?",
+                                  "DELETE FROM kiosk_tile_meshes", blob=png(256, 256, 8, 2)),
      ": tile is a 8-bit RGB PNG; this table holds 16-bit grey PNGs [STORE_TILE_FORMAT]",
      "terrain DEGRADED", 0),
     ("grey16-in-normals", corrupt("UPDATE normals SET tile_data = ?", blob=png(256, 256, 16, 0)),
      ": tile is a 16-bit grey PNG; this table holds 8-bit PNGs or JPEGs [STORE_TILE_FORMAT]",
      "layer shade DEGRADED", 0),
-    ("png-bomb", corrupt("UPDATE elevation SET tile_data = ? WHERE zoom_level = 0", blob=BOMB),
+    ("png-bomb", corrupt("UPDATE elevation SET tile_data = ? WHERE zoom_level = 0",
+                         "DELETE FROM kiosk_tile_meshes", blob=BOMB),
      "elevation/0/0/0: tile claims 60000x60000 pixels, the table's tiles are 256x256",
      "tile claims 60000x60000 pixels", 0),
     ("tile-ancillary-emptied", corrupt("DELETE FROM gpkg_2d_gridded_tile_ancillary"),
