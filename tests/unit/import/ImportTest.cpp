@@ -803,6 +803,10 @@ TEST(ImportErrors, BadInputsTable) {
     const double far[6] = {100000, 30, 0, 1000000, 0, -30};
     writeTiff(dir / "far.tif", 50, 40, far, 32610, std::vector<float>(2000, 1.f));
     { std::ofstream(dir / "text.tif") << "this is not a raster"; }
+    // 446 bytes whose classic NetCDF header makes libnetcdf's nc_open ask for 7.6 GB for one
+    // variable: found by SwwFuzzSmoke (tests/fuzz/CMakeLists.txt).
+    fs::copy_file("tests/fuzz/seeds/sww/9d4e72bf320411a353c1a99efa4c2a6687fd2099",
+                  dir / "header-bomb.sww");
     GDALDatasetH png = GDALCreate(GDALGetDriverByName("MEM"), "", 8, 8, 1, GDT_Byte, nullptr);
     GDALClose(GDALCreateCopy(GDALGetDriverByName("PNG"), (dir / "bare.png").c_str(), png, 0,
                              nullptr, nullptr, nullptr));
@@ -831,6 +835,8 @@ TEST(ImportErrors, BadInputsTable) {
     const BadInput cases[] = {
         {"missing file", elev("nope.tif"), "IMPORT_UNREADABLE", "nope.tif: cannot read raster"},
         {"not a raster", elev("text.tif"), "IMPORT_UNREADABLE", "text.tif: cannot read raster"},
+        {"SWW header claiming gigabytes", elev("header-bomb.sww"), "IMPORT_UNREADABLE",
+         "header-bomb.sww: cannot read SWW"},
         {"no georeferencing", elev("bare.png"), "IMPORT_NO_GEOREF",
          "bare.png: source has no georeferencing"},
         {"all nodata", elev("nodata.tif"), "IMPORT_ALL_NODATA",
