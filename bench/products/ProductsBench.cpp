@@ -79,23 +79,7 @@ std::string scenario(int products) {
            layers + " ] }";
 }
 
-// CPU time (ms) of this process's threads whose name starts with `prefix` and, when `only` is
-// not null, whose id is in it.
-double threadsCpuMs(const std::string& prefix, const std::set<std::string>* only = nullptr) {
-    double ns = 0;
-    std::error_code ec;
-    for (const auto& task : fs::directory_iterator("/proc/self/task", ec)) {
-        const std::string tid = task.path().filename().string();
-        if (only && !only->count(tid)) continue;
-        std::string name;
-        std::getline(std::ifstream(task.path() / "comm"), name);
-        if (name.rfind(prefix, 0) != 0) continue;
-        double run = 0;  // schedstat: ns on the CPU, ns waiting, timeslices
-        if (std::ifstream(task.path() / "schedstat") >> run) ns += run;
-    }
-    return ns / 1e6;
-}
-
+// The ids of this process's threads whose name starts with `prefix`.
 std::set<std::string> threadsNamed(const std::string& prefix) {
     std::set<std::string> ids;
     std::error_code ec;
@@ -105,6 +89,16 @@ std::set<std::string> threadsNamed(const std::string& prefix) {
         if (name.rfind(prefix, 0) == 0) ids.insert(task.path().filename().string());
     }
     return ids;
+}
+
+// CPU time (ms) of the threads `ids` of this process.
+double threadsCpuMs(const std::set<std::string>& ids) {
+    double ns = 0;
+    for (const auto& tid : ids) {
+        double run = 0;  // schedstat: ns on the CPU, ns waiting, timeslices
+        if (std::ifstream(fs::path("/proc/self/task") / tid / "schedstat") >> run) ns += run;
+    }
+    return ns / 1e6;
 }
 
 double mainThreadCpuMs() {
@@ -201,13 +195,14 @@ int main(int argc, char** argv) {
         return app::makeCamera(vp ? *vp : s.terrain().overviewViewpoint(), s.terrain().bounds(), w,
                                h, s.scenario().camera.fovY);
     };
+    // llvmpipe's rasterizer threads, started with the context.
+    const std::set<std::string> rasterizers = threadsNamed("llvmpipe");
     // Draws every session at data time timeOf(f) for f < frames (each settled first, not timed,
     // as a kiosk's prefetch would have it).
     auto run = [&](auto timeOf, std::vector<double>* loaderMs) {
         std::vector<Figures> fig(sessions.size());
         std::vector<double> loader0(sessions.size());
-        for (std::size_t k = 0; k < sessions.size(); ++k)
-            loader0[k] = threadsCpuMs("kiosk-loader", &loaders[k]);
+        for (std::size_t k = 0; k < sessions.size(); ++k) loader0[k] = threadsCpuMs(loaders[k]);
         for (int f = 0; f < frames; ++f) {
             const double t = timeOf(f);
             for (std::size_t k = 0; k < sessions.size(); ++k) {
@@ -218,13 +213,13 @@ int main(int argc, char** argv) {
                     s.prepare(cam, t);
                     if (!s.terrain().settled()) usleep(500);
                 }
-                const double raster = threadsCpuMs("llvmpipe"), cpu = mainThreadCpuMs();
+                const double raster = threadsCpuMs(rasterizers), cpu = mainThreadCpuMs();
                 const double a = wall.now();
                 const app::FrameRecord rec = s.drawFrame(cam, t, w, h);
                 glFinish();
                 fig[k].ms.push_back((wall.now() - a) * 1000.0);
                 fig[k].renderCpuMs += mainThreadCpuMs() - cpu;
-                fig[k].rasterCpuMs += threadsCpuMs("llvmpipe") - raster;
+                fig[k].rasterCpuMs += threadsCpuMs(rasterizers) - raster;
                 fig[k].uploadMs += rec.uploadMs;
                 fig[k].uploads += rec.uploads;
                 fig[k].held += s.terrain().frameInfo().holdingSequence;
@@ -234,7 +229,7 @@ int main(int argc, char** argv) {
         }
         if (loaderMs)
             for (std::size_t k = 0; k < sessions.size(); ++k)
-                loaderMs->push_back(threadsCpuMs("kiosk-loader", &loaders[k]) - loader0[k]);
+                loaderMs->push_back(threadsCpuMs(loaders[k]) - loader0[k]);
         return fig;
     };
     std::vector<double> loaderMs;
