@@ -23,10 +23,10 @@ struct TileMeshStats {
  * kiosk_tile_meshes: tier 0 with each vertex's split tier, from which the loader derives every
  * coarser tolerance tier; tiles with nodata (where that does not hold) keep tier 0 and each
  * coarser tier with at most half of tier 0's vertices whole, meshed from the posts as the loader
- * would mesh them. The loader
- * then decodes instead of meshing whenever it asks for one of these tolerances (a run with other
- * TerrainOptions meshes on load as before). Tiles are read from the store (the posts exactly as the
- * loader decodes them) on the calling thread, meshed and compressed on `threads` threads.
+ * would mesh them. The loader then decodes instead of meshing whenever it asks for one of these
+ * tolerances (a run with other TerrainOptions meshes on load as before). Tiles are read from the
+ * store (the posts exactly as the loader decodes them) on the calling thread, meshed and
+ * compressed on `threads` threads.
  */
 Result<TileMeshStats> storeTileMeshes(io::StoreWriter& writer, const std::string& table,
                                       double zStep, int threads, Progress& progress);
