@@ -46,6 +46,8 @@ double StartupPhases::sinceProcessStart() noexcept {
 }
 
 void StartupPhases::mark(const char* name) noexcept {
+    // Only log() reads the marks, and it says them at debug level only: no /proc read otherwise.
+    if (log::threshold() < log::Level::Debug) return;
     if (mCount < mMarks.size()) mMarks[mCount++] = {name, sinceProcessStart()};
 }
 
