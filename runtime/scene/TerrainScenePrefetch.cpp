@@ -1,5 +1,6 @@
 // TerrainScene: prefetch of sequence frames ahead of the playhead (docs/animation.md
-// "Prefetch"). Kept apart from TerrainScene.cpp, which holds selection, upload and drawing.
+// "Prefetch"). Kept apart from TerrainScene.cpp (creation, selection), TerrainSceneUploads.cpp
+// and TerrainSceneDraw.cpp.
 #include "runtime/scene/TerrainScene.h"
 
 #include <algorithm>
