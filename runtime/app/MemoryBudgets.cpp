@@ -14,7 +14,11 @@
 namespace kiosk::app {
 namespace {
 
-constexpr std::uint64_t kLayerLutBytes = std::uint64_t(color::kMinLutSize) * 4;  // RGBA8 texture
+// RGBA8 textures: a layer's ramp (legends) and the stack's copy between two edge texels
+// (render::makeEdgedLutTexture); a legend of a function no layer draws has the ramp only.
+constexpr std::uint64_t kLegendLutBytes = std::uint64_t(color::kMinLutSize) * 4;
+constexpr std::uint64_t kLayerLutBytes =
+    kLegendLutBytes + std::uint64_t(color::kMinLutSize + 2) * 4;
 
 std::uint64_t orDefault(const config::MemoryBudget& b, std::uint64_t fallback) {
     return b.set() ? std::uint64_t(b.bytes) : fallback;
@@ -82,7 +86,7 @@ MemoryNeeds memoryNeeds(const config::Scenario& sc) {
     if (legend.enabled && sc.findTransfer(legend.transfer) &&
         !layerTransfers.count(legend.transfer)) {
         ++n.luts;
-        n.lutBytes += kLayerLutBytes;
+        n.lutBytes += kLegendLutBytes;
     }
     std::set<std::filesystem::path> images;
     bool route = false;

@@ -53,9 +53,16 @@ struct LayerBinding {
     glm::vec4 product{0.0f};
 };
 
+/**
+ * @brief A transfer function's LUT for the stack (uLut<k>). `texture` holds the `size` ramp
+ * texels (first and last texel centres at the domain ends) between two edge texels holding
+ * `below` and `above` (render::makeEdgedLutTexture): out of the domain the shader moves its LUT
+ * coordinate onto an edge texel, one scalar select, instead of selecting a colour per pixel,
+ * which costs llvmpipe ~1.4 ms a layer at 1280x720 (docs/products.md, "Floors").
+ */
 struct LutBinding {
-    GLuint texture = 0;
-    int size = 2;
+    GLuint texture = 0;  ///< makeEdgedLutTexture(size, ramp, below, above)
+    int size = 2;        ///< ramp texels, edges not counted
     float domainMin = 0, domainMax = 1;
     glm::vec4 nodata{0.0f};
     glm::vec4 below{-1.0f};  ///< alpha < 0: clamp to the LUT's first entry

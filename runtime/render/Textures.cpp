@@ -72,6 +72,22 @@ gl::Texture makeLutTexture(int size, const std::uint8_t* rgba) {
     return makeRgbaTexture(size, 1, rgba, false);
 }
 
+gl::Texture makeEdgedLutTexture(int size, const std::uint8_t* rgba, const glm::vec4& below,
+                                const glm::vec4& above) {
+    const std::size_t n = std::size_t(std::max(size, 1));
+    std::vector<std::uint8_t> texels((n + 2) * 4);
+    std::copy(rgba, rgba + n * 4, texels.begin() + 4);
+    const auto edge = [&](std::size_t texel, const glm::vec4& c, const std::uint8_t* end) {
+        for (int k = 0; k < 4; ++k)
+            texels[texel * 4 + std::size_t(k)] =
+                c.a >= 0.0f ? std::uint8_t(std::lround(std::clamp(c[k], 0.0f, 1.0f) * 255.0f))
+                            : end[k];
+    };
+    edge(0, below, rgba);
+    edge(n + 1, above, rgba + (n - 1) * 4);
+    return makeLutTexture(int(n + 2), texels.data());
+}
+
 namespace {
 void setLinearClamp() {
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

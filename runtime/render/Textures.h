@@ -7,6 +7,8 @@
 #include "runtime/gl/GlObject.h"
 #include "runtime/io/TextureBlocks.h"
 
+#include <glm/vec4.hpp>
+
 namespace kiosk::render {
 
 /** @brief RGBA8 2D texture from tightly packed pixels (top row first), linear, clamped. */
@@ -33,6 +35,12 @@ gl::Texture makeCompressedTexture(const io::CompressedImage& image);
  * so that any number of stops costs one fetch.
  */
 gl::Texture makeLutTexture(int size, const std::uint8_t* rgba);
+/**
+ * @brief A layer stack's LUT (render::LutBinding): the `size` ramp texels between two edge
+ * texels, `below` first and `above` last (RGBA in [0, 1]; alpha < 0: the ramp's end entry).
+ */
+gl::Texture makeEdgedLutTexture(int size, const std::uint8_t* rgba, const glm::vec4& below,
+                                const glm::vec4& above);
 
 /**
  * @brief Scalar raster (data units, NaN = nodata) as RG16F: R = value x validity, G = validity,

@@ -122,6 +122,8 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
         }
         lut.size = int(rgba.size() / 4);
         lut.texture = render::makeLutTexture(lut.size, rgba.data());
+        const render::LutBinding b = s->lutBinding(std::size_t(&lut - s->mLuts.data()));
+        lut.edged = render::makeEdgedLutTexture(lut.size, rgba.data(), b.below, b.above);
     }
     if (Diagnostics d = s->buildRenderer(); d.hasErrors()) return d;
 
@@ -209,7 +211,7 @@ render::LutBinding TerrainScene::lutBinding(std::size_t k) const {
         b.below = toVec4(lut.function->below);
         b.above = toVec4(lut.function->above);
     }
-    b.texture = lut.texture.id();
+    b.texture = lut.edged.id();
     b.size = lut.size;
     return b;
 }

@@ -125,8 +125,9 @@ struct LensPlacement {
 struct SceneLut {
     std::string name;
     const color::TransferFunction* function = nullptr;
-    gl::Texture texture;
-    int size = 0;
+    gl::Texture texture;  ///< the ramp alone (legends)
+    gl::Texture edged;    ///< the ramp between the below / above texels (the layer stack)
+    int size = 0;         ///< ramp texels
 };
 
 /**

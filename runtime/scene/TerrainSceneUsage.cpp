@@ -23,7 +23,8 @@ SceneCacheUsage TerrainScene::cacheUsage() const {
 
 SceneMemoryUsage TerrainScene::memoryUsage() const {
     SceneMemoryUsage u;
-    for (const SceneLut& lut : mLuts) u.lutBytes += std::uint64_t(lut.size) * 4;  // RGBA8, GPU
+    // RGBA8 on the GPU: the ramp (legends) and the stack's copy between two edge texels.
+    for (const SceneLut& lut : mLuts) u.lutBytes += std::uint64_t(lut.size * 2 + 2) * 4;
     if (mMappingSet) {
         u.lutBytes += mMappingSet->lutBytes();
         u.mappingBytes = mMappingSet->layerBytes();

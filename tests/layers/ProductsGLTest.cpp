@@ -113,7 +113,7 @@ protected:
             lut[std::size_t(i) * 4 + 2] = std::uint8_t(std::lround((1.0f - t) * 255.0f));
             lut[std::size_t(i) * 4 + 3] = 255;
         }
-        mLut = render::makeLutTexture(1024, lut.data());
+        mLut = render::makeEdgedLutTexture(1024, lut.data(), glm::vec4(-1.0f), glm::vec4(-1.0f));
     }
 
     static glm::ivec3 lutDn(double v) {

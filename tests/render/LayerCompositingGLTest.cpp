@@ -145,7 +145,8 @@ protected:
             lut[std::size_t(i) * 4 + 2] = std::uint8_t(std::lround((1.0f - t) * 255.0f));
             lut[std::size_t(i) * 4 + 3] = 255;
         }
-        mLut = makeLutTexture(1024, lut.data());
+        mRamp = lut;
+        mLut = makeEdgedLutTexture(1024, lut.data(), mLutBinding.below, mLutBinding.above);
         mLutBinding.texture = mLut.id();
         mLutBinding.size = 1024;
         mLutBinding.domainMin = 0.0f;
@@ -156,6 +157,7 @@ protected:
         const float t = std::clamp(v / 4.0f, 0.0f, 1.0f);
         return dn(glm::vec3(t, 0.0f, 1.0f - t));
     }
+    std::vector<std::uint8_t> mRamp;
     gl::Texture mLut;
     LutBinding mLutBinding;
 };
@@ -185,6 +187,8 @@ TEST_F(DataLayerGLTest, BelowAndAboveColours) {
     makeLut();
     mLutBinding.below = glm::vec4(1, 1, 0, 1);
     mLutBinding.above = glm::vec4(1, 1, 1, 1);
+    mLut = makeEdgedLutTexture(1024, mRamp.data(), mLutBinding.below, mLutBinding.above);
+    mLutBinding.texture = mLut.id();
     r->setLut(0, mLutBinding);
     const float lo[4] = {-1, -1, -1, -1}, hi[4] = {9, 9, 9, 9};
     auto tl = makeScalarTexture(2, 2, lo, std::nullopt), th = makeScalarTexture(2, 2, hi, std::nullopt);
@@ -207,8 +211,8 @@ TEST_F(DataLayerGLTest, SequenceInterpolatesDataBeforeTheLut) {
         for (int k = 0; k < 3; ++k) lut[std::size_t(i) * 4 + std::size_t(k)] = std::uint8_t(std::lround(c[k] * 255.0f));
         lut[std::size_t(i) * 4 + 3] = 255;
     }
-    auto lutTex = makeLutTexture(1024, lut.data());
     LutBinding lb;
+    auto lutTex = makeEdgedLutTexture(1024, lut.data(), lb.below, lb.above);
     lb.texture = lutTex.id();
     lb.size = 1024;
     lb.domainMin = 0.0f;
