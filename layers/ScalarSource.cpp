@@ -23,17 +23,17 @@ void ScalarSource::appendColour(std::ostream& s, int i, int lut) {
     // every data layer (docs/terrain.md §6).
     if (lut >= 0) {
         const int k = lut;
-        // Out of the domain the coordinate moves onto the LUT's below / above edge texel: a
-        // scalar select where selecting the colour costs llvmpipe ~1.4 ms a layer at 720p.
+        // Out of the domain or without data the coordinate moves onto the LUT's below, above or
+        // nodata texel: a scalar select, where selecting the colour costs llvmpipe ~0.7-1.6 ms
+        // a layer at 720p (docs/products.md).
         s << "        {\n"
           << "            float x = lutCoordEdged(v, uLutDomain" << k << ", uLutSize" << k << ");\n"
           << "            x = v < uLutDomain" << k << ".x && uLutBelow" << k
           << ".a >= 0.0 ? 0.0 : x;\n"
           << "            x = v > uLutDomain" << k << ".y && uLutAbove" << k
-          << ".a >= 0.0 ? 1.0 : x;\n"
-          << "            vec4 c = texture(uLut" << k << ", vec2(x, 0.5));\n"
-          << "            L" << i << " = d" << i << ".g >= 0.5 ? c : uLutNodata" << k
-          << ";\n        }\n";
+          << ".a >= 0.0 ? lutAboveCoord(uLutSize" << k << ") : x;\n"
+          << "            x = d" << i << ".g >= 0.5 ? x : 1.0;\n"
+          << "            L" << i << " = texture(uLut" << k << ", vec2(x, 0.5));\n        }\n";
     }
     s << "    }\n";
 }

@@ -14,11 +14,11 @@
 namespace kiosk::app {
 namespace {
 
-// RGBA8 textures: a layer's ramp (legends) and the stack's copy between two edge texels
-// (render::makeEdgedLutTexture); a legend of a function no layer draws has the ramp only.
+// RGBA8 textures: a layer's ramp (legends) and the stack's copy with its below, above and nodata
+// texels (render::makeEdgedLutTexture); a legend of a function no layer draws has the ramp only.
 constexpr std::uint64_t kLegendLutBytes = std::uint64_t(color::kMinLutSize) * 4;
 constexpr std::uint64_t kLayerLutBytes =
-    kLegendLutBytes + std::uint64_t(color::kMinLutSize + 2) * 4;
+    kLegendLutBytes + std::uint64_t(color::kMinLutSize + 3) * 4;
 
 std::uint64_t orDefault(const config::MemoryBudget& b, std::uint64_t fallback) {
     return b.set() ? std::uint64_t(b.bytes) : fallback;

@@ -179,8 +179,8 @@ Result<std::string> generateCompositeShader(const CompositeProgramDesc& desc,
     }
     for (int k = 0; k < desc.lutCount; ++k) {
         s << "uniform sampler2D uLut" << k << ";\nuniform vec2 uLutDomain" << k
-          << ";\nuniform float uLutSize" << k << ";\nuniform vec4 uLutNodata" << k
-          << ";\nuniform vec4 uLutBelow" << k << ";\nuniform vec4 uLutAbove" << k << ";\n";
+          << ";\nuniform float uLutSize" << k << ";\nuniform vec4 uLutBelow" << k
+          << ";\nuniform vec4 uLutAbove" << k << ";\n";
     }
     for (std::size_t j = 0; j < desc.lenses.size(); ++j)
         s << "uniform vec4 uLens" << j << ";\nuniform vec4 uLensParam" << j

@@ -58,7 +58,7 @@ Result<TerrainRenderer> TerrainRenderer::create(const CompositeProgramDesc& desc
     for (int k = 0; k < desc.lutCount; ++k) {
         const std::string n = std::to_string(k);
         r.mLutLocs.push_back({loc("uLut" + n), loc("uLutDomain" + n), loc("uLutSize" + n),
-                              loc("uLutNodata" + n), loc("uLutBelow" + n), loc("uLutAbove" + n)});
+                              loc("uLutBelow" + n), loc("uLutAbove" + n)});
     }
     r.mLuts.resize(std::size_t(desc.lutCount));
     // Unit layout: 0 elevation LUT, 1..lutCount transfer LUTs, then layers (each takes its
@@ -130,7 +130,6 @@ void TerrainRenderer::begin(const math::Camera& camera, const glm::dvec3& sceneO
         glUniform1i(l.tex, GLint(1 + k));
         glUniform2f(l.domain, lut.domainMin, lut.domainMax);
         glUniform1f(l.size, float(lut.size));
-        glUniform4fv(l.nodata, 1, glm::value_ptr(lut.nodata));
         glUniform4fv(l.below, 1, glm::value_ptr(lut.below));
         glUniform4fv(l.above, 1, glm::value_ptr(lut.above));
     }

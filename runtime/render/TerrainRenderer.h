@@ -54,15 +54,16 @@ struct LayerBinding {
 };
 
 /**
- * @brief A transfer function's LUT for the stack (uLut<k>). `texture` holds the `size` ramp
- * texels (first and last texel centres at the domain ends) between two edge texels holding
- * `below` and `above` (render::makeEdgedLutTexture): out of the domain the shader moves its LUT
- * coordinate onto an edge texel, one scalar select, instead of selecting a colour per pixel,
- * which costs llvmpipe ~1.4 ms a layer at 1280x720 (docs/products.md, "Floors").
+ * @brief A transfer function's LUT for the stack (uLut<k>). `texture` holds `below`, the `size`
+ * ramp texels (first and last texel centres at the domain ends), `above` and `nodata`
+ * (render::makeEdgedLutTexture): out of the domain or without data the shader moves its LUT
+ * coordinate onto that texel, one scalar select, instead of selecting a colour per pixel, which
+ * costs llvmpipe 0.7-1.6 ms a layer at 1280x720 (docs/products.md, "Floors"). below / above
+ * alpha (< 0: unset) is also read by the shader; `nodata` only goes into the texture.
  */
 struct LutBinding {
-    GLuint texture = 0;  ///< makeEdgedLutTexture(size, ramp, below, above)
-    int size = 2;        ///< ramp texels, edges not counted
+    GLuint texture = 0;  ///< makeEdgedLutTexture(size, ramp, below, above, nodata)
+    int size = 2;        ///< ramp texels, the three others not counted
     float domainMin = 0, domainMax = 1;
     glm::vec4 nodata{0.0f};
     glm::vec4 below{-1.0f};  ///< alpha < 0: clamp to the LUT's first entry
@@ -154,7 +155,7 @@ private:
         GLint product = -1;           ///< derived products only
     };
     struct LutLoc {
-        GLint tex = -1, domain = -1, size = -1, nodata = -1, below = -1, above = -1;
+        GLint tex = -1, domain = -1, size = -1, below = -1, above = -1;
     };
     struct LayerSlot {
         int unit = 0;  ///< first texture unit of the layer

@@ -73,19 +73,21 @@ gl::Texture makeLutTexture(int size, const std::uint8_t* rgba) {
 }
 
 gl::Texture makeEdgedLutTexture(int size, const std::uint8_t* rgba, const glm::vec4& below,
-                                const glm::vec4& above) {
+                                const glm::vec4& above, const glm::vec4& nodata) {
     const std::size_t n = std::size_t(std::max(size, 1));
-    std::vector<std::uint8_t> texels((n + 2) * 4);
+    std::vector<std::uint8_t> texels((n + 3) * 4);
     std::copy(rgba, rgba + n * 4, texels.begin() + 4);
     const auto edge = [&](std::size_t texel, const glm::vec4& c, const std::uint8_t* end) {
         for (int k = 0; k < 4; ++k)
             texels[texel * 4 + std::size_t(k)] =
-                c.a >= 0.0f ? std::uint8_t(std::lround(std::clamp(c[k], 0.0f, 1.0f) * 255.0f))
-                            : end[k];
+                c.a >= 0.0f || !end
+                    ? std::uint8_t(std::lround(std::clamp(c[k], 0.0f, 1.0f) * 255.0f))
+                    : end[k];
     };
     edge(0, below, rgba);
     edge(n + 1, above, rgba + (n - 1) * 4);
-    return makeLutTexture(int(n + 2), texels.data());
+    edge(n + 2, nodata, nullptr);
+    return makeLutTexture(int(n + 3), texels.data());
 }
 
 namespace {

@@ -36,11 +36,12 @@ gl::Texture makeCompressedTexture(const io::CompressedImage& image);
  */
 gl::Texture makeLutTexture(int size, const std::uint8_t* rgba);
 /**
- * @brief A layer stack's LUT (render::LutBinding): the `size` ramp texels between two edge
- * texels, `below` first and `above` last (RGBA in [0, 1]; alpha < 0: the ramp's end entry).
+ * @brief A layer stack's LUT (render::LutBinding), `size` + 3 texels: `below`, the `size` ramp
+ * texels, `above`, then `nodata` (RGBA in [0, 1]; below / above with alpha < 0: the ramp's end
+ * entry). lutCoordEdged() in runtime/shaders/common/encode.glsl addresses it.
  */
 gl::Texture makeEdgedLutTexture(int size, const std::uint8_t* rgba, const glm::vec4& below,
-                                const glm::vec4& above);
+                                const glm::vec4& above, const glm::vec4& nodata);
 
 /**
  * @brief Scalar raster (data units, NaN = nodata) as RG16F: R = value x validity, G = validity,

@@ -123,7 +123,7 @@ Result<std::unique_ptr<TerrainScene>> TerrainScene::create(const config::Scenari
         lut.size = int(rgba.size() / 4);
         lut.texture = render::makeLutTexture(lut.size, rgba.data());
         const render::LutBinding b = s->lutBinding(std::size_t(&lut - s->mLuts.data()));
-        lut.edged = render::makeEdgedLutTexture(lut.size, rgba.data(), b.below, b.above);
+        lut.edged = render::makeEdgedLutTexture(lut.size, rgba.data(), b.below, b.above, b.nodata);
     }
     if (Diagnostics d = s->buildRenderer(); d.hasErrors()) return d;
 

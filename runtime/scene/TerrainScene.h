@@ -126,7 +126,7 @@ struct SceneLut {
     std::string name;
     const color::TransferFunction* function = nullptr;
     gl::Texture texture;  ///< the ramp alone (legends)
-    gl::Texture edged;    ///< the ramp between the below / above texels (the layer stack)
+    gl::Texture edged;    ///< below, the ramp, above, nodata texels (the layer stack)
     int size = 0;         ///< ramp texels
 };
 

@@ -23,8 +23,9 @@ SceneCacheUsage TerrainScene::cacheUsage() const {
 
 SceneMemoryUsage TerrainScene::memoryUsage() const {
     SceneMemoryUsage u;
-    // RGBA8 on the GPU: the ramp (legends) and the stack's copy between two edge texels.
-    for (const SceneLut& lut : mLuts) u.lutBytes += std::uint64_t(lut.size * 2 + 2) * 4;
+    // RGBA8 on the GPU: the ramp (legends) and the stack's copy with its below, above and
+    // nodata texels.
+    for (const SceneLut& lut : mLuts) u.lutBytes += std::uint64_t(lut.size * 2 + 3) * 4;
     if (mMappingSet) {
         u.lutBytes += mMappingSet->lutBytes();
         u.mappingBytes = mMappingSet->layerBytes();

@@ -113,7 +113,9 @@ protected:
             lut[std::size_t(i) * 4 + 2] = std::uint8_t(std::lround((1.0f - t) * 255.0f));
             lut[std::size_t(i) * 4 + 3] = 255;
         }
-        mLut = render::makeEdgedLutTexture(1024, lut.data(), glm::vec4(-1.0f), glm::vec4(-1.0f));
+        // Nodata transparent: the green base shows.
+        mLut = render::makeEdgedLutTexture(1024, lut.data(), glm::vec4(-1.0f), glm::vec4(-1.0f),
+                                           glm::vec4(0.0f));
     }
 
     static glm::ivec3 lutDn(double v) {
@@ -220,7 +222,6 @@ protected:
         lb.size = 1024;
         lb.domainMin = 0.0f;
         lb.domainMax = kLutMax;
-        lb.nodata = glm::vec4(0.0f);  // transparent: the green base shows
         r->setLut(0, lb);
         return std::make_unique<render::TerrainRenderer>(std::move(*r.value));
     }

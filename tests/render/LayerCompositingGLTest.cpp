@@ -146,12 +146,13 @@ protected:
             lut[std::size_t(i) * 4 + 3] = 255;
         }
         mRamp = lut;
-        mLut = makeEdgedLutTexture(1024, lut.data(), mLutBinding.below, mLutBinding.above);
+        mLutBinding.nodata = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f);
+        mLut = makeEdgedLutTexture(1024, lut.data(), mLutBinding.below, mLutBinding.above,
+                                   mLutBinding.nodata);
         mLutBinding.texture = mLut.id();
         mLutBinding.size = 1024;
         mLutBinding.domainMin = 0.0f;
         mLutBinding.domainMax = 4.0f;
-        mLutBinding.nodata = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f);
     }
     static glm::ivec3 lutDn(float v) {
         const float t = std::clamp(v / 4.0f, 0.0f, 1.0f);
@@ -187,7 +188,8 @@ TEST_F(DataLayerGLTest, BelowAndAboveColours) {
     makeLut();
     mLutBinding.below = glm::vec4(1, 1, 0, 1);
     mLutBinding.above = glm::vec4(1, 1, 1, 1);
-    mLut = makeEdgedLutTexture(1024, mRamp.data(), mLutBinding.below, mLutBinding.above);
+    mLut = makeEdgedLutTexture(1024, mRamp.data(), mLutBinding.below, mLutBinding.above,
+                               mLutBinding.nodata);
     mLutBinding.texture = mLut.id();
     r->setLut(0, mLutBinding);
     const float lo[4] = {-1, -1, -1, -1}, hi[4] = {9, 9, 9, 9};
@@ -212,7 +214,7 @@ TEST_F(DataLayerGLTest, SequenceInterpolatesDataBeforeTheLut) {
         lut[std::size_t(i) * 4 + 3] = 255;
     }
     LutBinding lb;
-    auto lutTex = makeEdgedLutTexture(1024, lut.data(), lb.below, lb.above);
+    auto lutTex = makeEdgedLutTexture(1024, lut.data(), lb.below, lb.above, lb.nodata);
     lb.texture = lutTex.id();
     lb.size = 1024;
     lb.domainMin = 0.0f;

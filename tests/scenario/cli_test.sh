@@ -94,7 +94,7 @@ b = j["budgets"]
 assert b["cache_gpu_sized_to_view"] == 1 and b["cache_gpu_bytes"] >= 32 << 20
 assert b["upload_bytes_per_frame"] > 0 and b["view_working_set_gpu_bytes"] > 0
 # Memory budgets (docs/kiosk.md): defaults, and the demo's two LUTs held.
-assert b["lut_bytes"] == 1 << 20 and b["lut_bytes_used"] == 2 * 8200, b
+assert b["lut_bytes"] == 1 << 20 and b["lut_bytes_used"] == 2 * 8204, b
 assert b["mapping_bytes"] > 0 and b["font_atlas_bytes"] == 1 << 20
 assert b["sqlite_page_cache_bytes_per_connection"] == 256 << 10
 PY

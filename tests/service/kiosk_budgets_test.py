@@ -22,7 +22,7 @@ except ImportError:
 GK, ROOT, STORE = demo_setup(sys.argv)
 c = Checks()
 
-LUT_BUDGET = 32800        # 4 layer LUTs of 8200 bytes (ramp + edged copy); the demo has 2
+LUT_BUDGET = 32816        # 4 layer LUTs of 8204 bytes (ramp + the stack's copy); the demo has 2
 FONT_BUDGET = 131072      # 1200 px high output wants 30 px text: its atlas is larger
 PAGE_CACHE = 131072       # per store connection
 
@@ -65,7 +65,7 @@ with temp_dir() as tmp:
     good = os.path.join(tmp, "good.json")
     many = os.path.join(tmp, "many.json")
     save(good, demo)
-    save(many, with_layers(demo, 4))  # 6 LUTs: 49200 bytes
+    save(many, with_layers(demo, 4))  # 6 LUTs: 49224 bytes
     kiosk_file = os.path.join(tmp, "kiosk.json")
     with open(kiosk_file, "w") as f:
         f.write('{\n  "playlist": [ { "scenario": "many.json", "duration": 600 },\n'
@@ -87,13 +87,13 @@ with temp_dir() as tmp:
         skips = [l for l in log.splitlines() if "skipping /playlist/0" in l]
         c.check(len(skips) == 1 and re.search(
             re.escape(kiosk_file) + r":6:17: /budgets/lutBytes: scenario " + re.escape(many) +
-            r" needs 48\.0 KiB \(49200 bytes\) of transfer-function LUTs \(6 LUTs\), over this "
-            r"kiosk's budget of 32\.0 KiB \(32800 bytes\) \[BUDGET_LUTS\]", skips[0]) is not None,
+            r" needs 48\.1 KiB \(49224 bytes\) of transfer-function LUTs \(6 LUTs\), over this "
+            r"kiosk's budget of 32\.0 KiB \(32816 bytes\) \[BUDGET_LUTS\]", skips[0]) is not None,
             "the over-budget entry skipped with one line naming file:line:col, pointer and "
             "figures: %r" % skips)
         c.check(gauge(m, "geokiosk_playlist_position") == 1.0, "the entry within budget plays")
         c.check(gauge(m, "geokiosk_cache_budget_bytes", "luts") == LUT_BUDGET, "LUT budget reported")
-        c.check(gauge(m, "geokiosk_cache_bytes", "luts") == 16400,
+        c.check(gauge(m, "geokiosk_cache_bytes", "luts") == 16408,
                 "LUT bytes held: the demo's 2 LUTs (%s)" % gauge(m, "geokiosk_cache_bytes", "luts"))
         font = gauge(m, "geokiosk_cache_bytes", "font_atlas") or 0
         c.check(gauge(m, "geokiosk_cache_budget_bytes", "font_atlas") == FONT_BUDGET
@@ -112,18 +112,18 @@ with temp_dir() as tmp:
 
         # A hot edit that would exceed the LUT budget: refused, the last good picture stays.
         frames = gauge(m, "geokiosk_frames_total")
-        save(good, with_layers(demo, 3))  # 5 LUTs: 41000 bytes
+        save(good, with_layers(demo, 3))  # 5 LUTs: 41020 bytes
         c.check(wait_until(lambda: "edit rejected" in k.log_text(), 30), "over-budget edit refused")
         rejected = [l for l in k.log_text().splitlines() if "edit rejected" in l]
         c.check(len(rejected) == 1 and "/budgets/lutBytes: " in rejected[0]
-                and "41000 bytes" in rejected[0] and "BUDGET_LUTS" in rejected[0],
+                and "41020 bytes" in rejected[0] and "BUDGET_LUTS" in rejected[0],
                 "one line naming the budget: %r" % rejected)
         # Published with the next frame after the refusal.
         c.check(wait_until(lambda: gauge(samples(k), "geokiosk_reload_failures_total") == 1, 10),
                 "counted as a failed reload")
         m = samples(k)
         c.check(("geokiosk_layer_state", frozenset({("layer", "relief0"), ("state", "ready")}))
-                not in m and gauge(m, "geokiosk_cache_bytes", "luts") == 16400,
+                not in m and gauge(m, "geokiosk_cache_bytes", "luts") == 16408,
                 "the previous scenario is still on screen")
         c.check(wait_until(lambda: gauge(samples(k), "geokiosk_frames_total") > frames + 3, 20),
                 "frames keep coming")

@@ -7,9 +7,11 @@ float lutCoord(float value, vec2 domain, float lutSize) {
     return (t * (lutSize - 1.0) + 0.5) / lutSize;
 }
 
-// The same for a layer stack's LUT, whose lutSize ramp texels lie between two edge texels
-// (render::makeEdgedLutTexture): coordinate 0 and 1 read the edges exactly (clamp to edge).
+// The same for a layer stack's LUT (render::makeEdgedLutTexture): texel 0 below the domain, the
+// lutSize ramp texels, one above, one for nodata. Coordinate 0 reads the below texel and 1 the
+// nodata texel exactly (clamp to edge); the above texel is lutAboveCoord().
 float lutCoordEdged(float value, vec2 domain, float lutSize) {
     float t = clamp((value - domain.x) / max(domain.y - domain.x, 1e-20), 0.0, 1.0);
-    return (t * (lutSize - 1.0) + 1.5) / (lutSize + 2.0);
+    return (t * (lutSize - 1.0) + 1.5) / (lutSize + 3.0);
 }
+float lutAboveCoord(float lutSize) { return (lutSize + 1.5) / (lutSize + 3.0); }
