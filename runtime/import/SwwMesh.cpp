@@ -31,8 +31,11 @@ double attDouble(int nc, const char* name, double fallback) {
  * libnetcdf allocates whatever a classic-format header claims (a 60-byte file asking for 926
  * million dimensions makes nc_open calloc 7.4 GB: found by tests/fuzz/SwwFuzzer.cpp). Walk the
  * header of a classic file (CDF1/CDF2/CDF5) and refuse it when a count or name length cannot fit
- * in the bytes that follow; anything else (HDF5-based netCDF-4, a header cut short) is left to
- * nc_open. False with `why` set when the header lies.
+ * in the bytes that follow, and when a variable's shape would make nc_open divide by zero (a
+ * length-0 dimension before the last of a shape, an unknown type: libnetcdf 4.9's NC_check_vlen
+ * multiplies the sizes up and divides by the product; SIGFPE, found by SwwFuzzSmoke); anything
+ * else (HDF5-based netCDF-4, a header cut short) is left to nc_open. False with `why` set when
+ * the header lies.
  */
 bool classicHeaderFits(const std::string& path, std::string& why) {
     std::FILE* f = std::fopen(path.c_str(), "rb");
@@ -62,7 +65,8 @@ bool classicHeaderFits(const std::string& path, std::string& why) {
         std::uint64_t tag = 0;
         if (!u(4, tag) || !u(countBytes, n)) return false;
         if (n > (total - std::min<std::uint64_t>(total, p)) / minBytes) {
-            why = std::string("header claims ") + std::to_string(n) + " " + what;
+            why = std::string("header claims ") + std::to_string(n) + " " + what +
+                  " (larger than the file)";
             ok = false;
             return false;
         }
@@ -72,7 +76,7 @@ bool classicHeaderFits(const std::string& path, std::string& why) {
         std::uint64_t len = 0;
         if (!u(countBytes, len)) return false;
         if (len > total - std::min<std::uint64_t>(total, p)) {
-            why = "header claims a name of " + std::to_string(len) + " bytes";
+            why = "header claims a name of " + std::to_string(len) + " bytes (larger than the file)";
             ok = false;
             return false;
         }
@@ -89,7 +93,8 @@ bool classicHeaderFits(const std::string& path, std::string& why) {
             const std::uint64_t size = type < 12 ? kSize[type] : 0;
             if (size == 0) return false;  // nc_open refuses it
             if (len > (total - std::min<std::uint64_t>(total, p)) / size) {
-                why = "header claims an attribute of " + std::to_string(len) + " values";
+                why = "header claims an attribute of " + std::to_string(len) +
+                      " values (larger than the file)";
                 ok = false;
                 return false;
             }
@@ -99,9 +104,11 @@ bool classicHeaderFits(const std::string& path, std::string& why) {
     };
     std::uint64_t dims = 0;
     if (!count(dims, 8, "dimensions")) return ok;
+    std::vector<std::uint64_t> dimLength;  // 0: the record (unlimited) dimension
     for (std::uint64_t i = 0; i < dims; ++i) {
         std::uint64_t len = 0;
         if (!name() || !u(countBytes, len)) return ok;
+        dimLength.push_back(len);
     }
     if (!attributes()) return ok;
     std::uint64_t vars = 0;
@@ -110,13 +117,32 @@ bool classicHeaderFits(const std::string& path, std::string& why) {
         std::uint64_t ndims = 0, type = 0, vsize = 0, begin = 0;
         if (!name() || !u(countBytes, ndims)) return ok;
         if (ndims > (total - std::min<std::uint64_t>(total, p)) / 4) {
-            why = "header claims a variable of " + std::to_string(ndims) + " dimensions";
+            why = "header claims a variable of " + std::to_string(ndims) +
+                  " dimensions (larger than the file)";
             return false;
         }
-        p += std::size_t(ndims) * countBytes;
+        std::vector<std::uint64_t> shape;
+        for (std::uint64_t k = 0; k < ndims; ++k) {
+            std::uint64_t id = 0;
+            if (!u(countBytes, id)) return ok;
+            if (id >= dimLength.size()) return ok;  // nc_open refuses it
+            shape.push_back(dimLength[std::size_t(id)]);
+        }
         if (!attributes() || !u(4, type) || !u(countBytes, vsize) ||
             !u(version == 1 ? 4 : 8, begin))
             return ok;
+        if (type == 0 || type > (version == 5 ? 11u : 6u)) {
+            why = "header gives a variable the unknown type " + std::to_string(type);
+            return false;
+        }
+        // What NC_check_vlen divides by: the product of the sizes before the last (past the
+        // record dimension, which is first when a variable has it).
+        const std::size_t first = !shape.empty() && shape[0] == 0 ? 1 : 0;
+        for (std::size_t k = first; k + 1 < shape.size(); ++k)
+            if (shape[k] == 0) {
+                why = "header gives a variable a dimension of length 0 inside its shape";
+                return false;
+            }
     }
     return ok;
 }
@@ -128,7 +154,7 @@ Result<SwwMesh> SwwMesh::open(const std::string& path) {
     NcFile nc;
     if (std::string why; !classicHeaderFits(path, why)) {
         d.error("IMPORT_UNREADABLE", path, "",
-                "cannot read SWW: " + why + " (larger than the file)");
+                "cannot read SWW: " + why);
         return d;
     }
     int rc = nc_open(path.c_str(), NC_NOWRITE, &nc.id);

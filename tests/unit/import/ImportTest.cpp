@@ -807,6 +807,10 @@ TEST(ImportErrors, BadInputsTable) {
     // variable: found by SwwFuzzSmoke (tests/fuzz/CMakeLists.txt).
     fs::copy_file("tests/fuzz/seeds/sww/9d4e72bf320411a353c1a99efa4c2a6687fd2099",
                   dir / "header-bomb.sww");
+    // 596 bytes whose variable of an unknown type made libnetcdf 4.9's nc_open divide by zero
+    // (SIGFPE, the importer killed): found by SwwFuzzSmoke in a CI rehearsal.
+    fs::copy_file("tests/fuzz/seeds/sww/96d676ae4d3a7c46781c640db9f0f7c05000ce02",
+                  dir / "header-fpe.sww");
     GDALDatasetH png = GDALCreate(GDALGetDriverByName("MEM"), "", 8, 8, 1, GDT_Byte, nullptr);
     GDALClose(GDALCreateCopy(GDALGetDriverByName("PNG"), (dir / "bare.png").c_str(), png, 0,
                              nullptr, nullptr, nullptr));
@@ -837,6 +841,8 @@ TEST(ImportErrors, BadInputsTable) {
         {"not a raster", elev("text.tif"), "IMPORT_UNREADABLE", "text.tif: cannot read raster"},
         {"SWW header claiming gigabytes", elev("header-bomb.sww"), "IMPORT_UNREADABLE",
          "header-bomb.sww: cannot read SWW"},
+        {"SWW header that made nc_open divide by zero", elev("header-fpe.sww"),
+         "IMPORT_UNREADABLE", "header-fpe.sww: cannot read SWW: header gives a variable the unknown type"},
         {"no georeferencing", elev("bare.png"), "IMPORT_NO_GEOREF",
          "bare.png: source has no georeferencing"},
         {"all nodata", elev("nodata.tif"), "IMPORT_ALL_NODATA",
