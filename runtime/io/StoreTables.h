@@ -30,6 +30,9 @@ inline constexpr const char* kTileTinsExtension = "kiosk_tile_tins";
 inline constexpr const char* kTileTexturesTable = "kiosk_tile_textures";
 inline constexpr const char* kTileTexturesExtension = "kiosk_tile_textures";
 inline constexpr const char* kCoverageExtension = "gpkg_2d_gridded_coverage";
+/** @brief The OGC specification of the gridded coverage extension (gpkg_extensions.definition). */
+inline constexpr const char* kCoverageDefinition =
+    "http://docs.opengeospatial.org/is/17-066r1/17-066r1.html";
 /** @brief gpkg_extensions.definition of our extensions (plus "#extension_name"). */
 inline constexpr const char* kOurDefinition = "https://geokiosk.invalid/docs/store-format.md";
 inline constexpr std::int32_t kGpkgApplicationId = 0x47504B47;  // 'GPKG'
