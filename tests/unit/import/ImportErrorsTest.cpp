@@ -67,6 +67,10 @@ TEST(ImportErrors, BadInputsTable) {
     // (SIGFPE, the importer killed): found by SwwFuzzSmoke in a CI rehearsal.
     fs::copy_file("tests/fuzz/seeds/sww/96d676ae4d3a7c46781c640db9f0f7c05000ce02",
                   dir / "header-fpe.sww");
+    // 15 bytes, a classic header cut off inside its dimension count: libnetcdf read the rest as
+    // zeros and opened 14.9 million dimensions (1 GB, 2 s): found by SwwFuzzSmoke.
+    fs::copy_file("tests/fuzz/seeds/sww/94e1f741f9a1e65ea79e7e3b92374ae7ed1c538a",
+                  dir / "header-cut.sww");
     GDALDatasetH png = GDALCreate(GDALGetDriverByName("MEM"), "", 8, 8, 1, GDT_Byte, nullptr);
     GDALClose(GDALCreateCopy(GDALGetDriverByName("PNG"), (dir / "bare.png").c_str(), png, 0,
                              nullptr, nullptr, nullptr));
@@ -99,6 +103,8 @@ TEST(ImportErrors, BadInputsTable) {
          "header-bomb.sww: cannot read SWW"},
         {"SWW header that made nc_open divide by zero", elev("header-fpe.sww"), "IMPORT_UNREADABLE",
          "header-fpe.sww: cannot read SWW: header gives a variable the unknown type"},
+        {"SWW header cut off inside its lists", elev("header-cut.sww"), "IMPORT_UNREADABLE",
+         "header-cut.sww: cannot read SWW: header ends before the lists it declares"},
         {"no georeferencing", elev("bare.png"), "IMPORT_NO_GEOREF",
          "bare.png: source has no georeferencing"},
         {"all nodata", elev("nodata.tif"), "IMPORT_ALL_NODATA",
