@@ -315,6 +315,7 @@ struct LegendOverlay {
     std::string title;  ///< empty: the transfer function's label
     /** @brief A layer's own legend: its transfer function, its kind's title (products). */
     std::string layer;
+    std::string pointer;  ///< "/overlays/legend" or "/overlays/legend/<i>" (messages)
 };
 struct TimeLabelOverlay {
     bool enabled = false;
@@ -329,7 +330,11 @@ struct SimpleOverlay {
     Corner position = Corner::TopLeft;
 };
 struct Overlays {
-    LegendOverlay legend;
+    /**
+     * @brief `overlays.legend`: one object or an array of them, drawn in that order (legends at
+     * the same position stack), e.g. a product's legend next to another product's.
+     */
+    std::vector<LegendOverlay> legends;
     TimeLabelOverlay timeLabel;
     SimpleOverlay title{false, Corner::TopLeft};
     SimpleOverlay status{false, Corner::BottomLeft};

@@ -101,19 +101,25 @@ void Reader::crossReferences() {
                 key.view = it->second;
         }
     }
-    auto& legend = mS.overlays.legend;
+    for (auto& legend : mS.overlays.legends) checkLegend(legend, layerIds, tfDeclared);
+    checkKeyOrder();
+}
+
+void Reader::checkLegend(LegendOverlay& legend, const std::vector<std::string>& layerIds,
+                         const std::vector<std::string>& tfDeclared) {
+    const std::string& at = legend.pointer;
     if (!legend.layer.empty()) {
         // A layer's own legend: its transfer function, the title its kind gives.
         const Layer* shown = nullptr;
         for (const auto& l : mS.layers)
             if (l.id == legend.layer) shown = &l;
         if (!shown)
-            reference("/overlays/legend/layer", "layer", legend.layer, layerIds);
+            reference(at + "/layer", "layer", legend.layer, layerIds);
         else if (shown->transfer.empty())
-            mC.error("SCENARIO_BAD_VALUE", "/overlays/legend/layer",
+            mC.error("SCENARIO_BAD_VALUE", at + "/layer",
                      "layer \"" + legend.layer + "\" has no transfer function to show");
         else if (!legend.transfer.empty() && legend.transfer != shown->transfer)
-            mC.error("SCENARIO_CONFLICT", "/overlays/legend/transfer",
+            mC.error("SCENARIO_CONFLICT", at + "/transfer",
                      "give either \"layer\" or \"transfer\": layer \"" + legend.layer +
                          "\" uses \"" + shown->transfer + "\"");
         else
@@ -126,12 +132,11 @@ void Reader::crossReferences() {
                 break;
             }
         if (legend.transfer.empty())
-            mC.error("SCENARIO_MISSING", "/overlays/legend",
+            mC.error("SCENARIO_MISSING", at,
                      "the legend needs \"transfer\" (no layer uses a transfer function)");
     } else if (!legend.transfer.empty()) {
-        reference("/overlays/legend/transfer", "transfer function", legend.transfer, tfDeclared);
+        reference(at + "/transfer", "transfer function", legend.transfer, tfDeclared);
     }
-    checkKeyOrder();
 }
 
 // The path rule of config/PathPolicy.h; the file's name is quoted only as given.

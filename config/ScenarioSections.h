@@ -62,6 +62,9 @@ private:
         return out;
     }
     void crossReferences();
+    /** @brief A legend's layer or transfer function (its transfer from the layer when named). */
+    void checkLegend(LegendOverlay& legend, const std::vector<std::string>& layerIds,
+                     const std::vector<std::string>& tfDeclared);
     /** @brief Difference operands and comparison-lens sides (ComparisonChecks.cpp). */
     void comparisonReferences(const std::vector<std::string>& layerIds);
     void liveLayerMapping(const Obj& o, const ProjectiveMapping& m);

@@ -76,13 +76,23 @@ void Reader::overlays(const json& j) {
     if (!o.valid()) return;
     Overlays& ov = mS.overlays;
     if (const json* l = o.get("legend")) {
-        Obj lo(mC, *l, o.at("legend"), "Legend");
-        if (lo.valid()) {
-            ov.legend.enabled = lo.boolean("enabled").value_or(true);
-            assign(ov.legend.transfer, lo.name("transfer"));
-            assign(ov.legend.position, lo.oneOf("position", kCorners));
-            assign(ov.legend.title, lo.str("title"));
-            assign(ov.legend.layer, lo.name("layer"));
+        ov.legends.clear();
+        auto one = [&](const json& item, const std::string& ptr) {
+            Obj lo(mC, item, ptr, "Legend");
+            if (!lo.valid()) return;
+            LegendOverlay& legend = ov.legends.emplace_back();
+            legend.pointer = ptr;
+            legend.enabled = lo.boolean("enabled").value_or(true);
+            assign(legend.transfer, lo.name("transfer"));
+            assign(legend.position, lo.oneOf("position", kCorners));
+            assign(legend.title, lo.str("title"));
+            assign(legend.layer, lo.name("layer"));
+        };
+        if (l->is_array()) {
+            for (std::size_t i = 0; i < l->size(); ++i)
+                one((*l)[i], o.at("legend") + "/" + std::to_string(i));
+        } else {
+            one(*l, o.at("legend"));
         }
     }
     if (const json* t = o.get("timeLabel")) {

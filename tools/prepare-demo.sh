@@ -29,13 +29,14 @@ echo "prepare-demo: making the SYNTHETIC flood (bathtub fill, not a model run)"
 "$BIN/make-synthetic-flood" "$DEM" "$work/flood" --steps 13 --rise 150 \
     --start 2026-03-14T00:00:00Z >/dev/null
 "$GEOKIOSK" import sequence "$work"/flood/flood_*.tif --store "$work/rainier.gpkg" \
-    --name flood_depth --times "$work/flood/times.csv" --units m --quiet
+    --name flood_depth --times "$work/flood/times.csv" --units m --variable depth --quiet
 # A second SYNTHETIC run (water rising 100 m instead of 150 m, same times) for the comparison
 # lens scenarios (scenarios/demo/rainier-compare*.json).
 "$BIN/make-synthetic-flood" "$DEM" "$work/flood_b" --steps 13 --rise 100 \
     --start 2026-03-14T00:00:00Z >/dev/null
 "$GEOKIOSK" import sequence "$work"/flood_b/flood_*.tif --store "$work/rainier.gpkg" \
-    --name flood_depth_rise100 --times "$work/flood_b/times.csv" --units m --quiet
+    --name flood_depth_rise100 --times "$work/flood_b/times.csv" --units m \
+    --variable depth --quiet
 mv "$work/rainier.gpkg" "$STORE"
 echo "prepare-demo: wrote $STORE"
 "$GEOKIOSK" info "$STORE"

@@ -82,12 +82,14 @@ MemoryNeeds memoryNeeds(const config::Scenario& sc) {
         n.lutBytes += kLayerLutBytes;
         layerTransfers.insert(l.transfer);
     }
-    const auto& legend = sc.overlays.legend;
-    if (legend.enabled && sc.findTransfer(legend.transfer) &&
-        !layerTransfers.count(legend.transfer)) {
-        ++n.luts;
-        n.lutBytes += kLegendLutBytes;
-    }
+    std::set<std::string> legendTransfers;  // Session keeps one LUT per function
+    for (const auto& legend : sc.overlays.legends)
+        if (legend.enabled && sc.findTransfer(legend.transfer) &&
+            !layerTransfers.count(legend.transfer) &&
+            legendTransfers.insert(legend.transfer).second) {
+            ++n.luts;
+            n.lutBytes += kLegendLutBytes;
+        }
     std::set<std::filesystem::path> images;
     bool route = false;
     for (const auto& m : sc.projectiveMappings) {

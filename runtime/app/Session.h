@@ -123,7 +123,7 @@ public:
 private:
     Session() = default;
     void drawOverlays(double time, int width, int height);
-    void drawLegend(const config::LegendOverlay& legend, int width, int height);
+    void drawLegend(const config::LegendOverlay& legend, std::size_t index);
     void drawCaption(int width, int height);
     void wrapCaption(const std::string& caption, float maxText);
     std::optional<anim::CameraPath> buildPath(const std::string& name) const;
@@ -143,11 +143,16 @@ private:
     std::uint64_t mFontAtlasBytes = 0;  ///< atlas of mOverlay (CPU copy + GPU texture)
     int mFontWarnedPx = 0;              ///< wanted size the budget warning was logged for
     std::string mNotice;
-    /// the legend title/ticks/patches below were made for this transfer function
-    const config::TransferFunctionDef* mLegendFor = nullptr;
-    std::string mLegendTitle;
-    std::vector<color::LegendTick> mLegendTicks;
-    std::vector<color::LegendPatch> mLegendPatches;
+    /** @brief A legend's title, ticks and patches: they depend only on the scenario, so they
+     * are made once (per overlays.legend entry) and drawn every frame. */
+    struct LegendText {
+        const config::TransferFunctionDef* def = nullptr;  ///< made for this function
+        std::string layer, givenTitle;                     ///< and this layer and title
+        std::string title;
+        std::vector<color::LegendTick> ticks;
+        std::vector<color::LegendPatch> patches;
+    };
+    std::vector<LegendText> mLegendText;
     float mCurtain = 0.0f;
     std::optional<OverlayLayout> mOverlayLayout;
     /** @brief Which overlays drawOverlays() draws (bits below) and the output height its font

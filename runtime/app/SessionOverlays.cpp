@@ -115,7 +115,9 @@ void Session::drawOverlays(double time, int width, int height) {
         o.rect(12, y, float(width) - 24, 4, glm::vec4(1, 1, 1, 0.3f));
         o.rect(12, y, (float(width) - 24) * frac, 4, kText);
     }
-    if ((mOverlayOnly & kOverlayLegend) && ov.legend.enabled) drawLegend(ov.legend, width, height);
+    if (mOverlayOnly & kOverlayLegend)
+        for (std::size_t i = 0; i < ov.legends.size(); ++i)
+            if (ov.legends[i].enabled) drawLegend(ov.legends[i], i);
     if (!(mOverlayOnly & kOverlayStatus)) {  // a wall box of one overlay only
         // The chapter caption goes with the title (on a wall: once, in the title's box).
         if (mOverlayOnly & kOverlayTitle) drawCaption(width, height);
@@ -220,9 +222,7 @@ void Session::wrapCaption(const std::string& caption, float maxText) {
     }
 }
 
-void Session::drawLegend(const config::LegendOverlay& legend, int width, int height) {
-    (void)width;
-    (void)height;
+void Session::drawLegend(const config::LegendOverlay& legend, std::size_t index) {
     auto& o = *mOverlay;
     const config::TransferFunctionDef* def = mScenario->findTransfer(legend.transfer);
     if (!def) return;
@@ -243,25 +243,28 @@ void Session::drawLegend(const config::LegendOverlay& legend, int width, int hei
         texture = it->second.id();
     }
     const color::TransferFunction& tf = def->function;
-    // Title, ticks and patches depend only on the scenario: made once, drawn every frame.
-    if (mLegendFor != def) {
-        mLegendFor = def;
+    if (mLegendText.size() <= index) mLegendText.resize(index + 1);
+    LegendText& text = mLegendText[index];
+    if (text.def != def || text.layer != legend.layer || text.givenTitle != legend.title) {
+        text.def = def;
+        text.layer = legend.layer;
+        text.givenTitle = legend.title;
         const std::string kindTitle =
             legend.layer.empty() ? std::string() : mScene->legendTitle(legend.layer);
-        mLegendTitle = !legend.title.empty() ? legend.title
-                       : !kindTitle.empty()  ? kindTitle
-                       : !def->label.empty() ? def->label
-                                             : def->name;
-        if (!tf.units.empty()) mLegendTitle += " (" + tf.units + ")";
-        mLegendTicks = color::legendTicks(tf);
-        mLegendPatches = color::legendPatches(tf);
+        text.title = !legend.title.empty() ? legend.title
+                     : !kindTitle.empty()  ? kindTitle
+                     : !def->label.empty() ? def->label
+                                           : def->name;
+        if (!tf.units.empty()) text.title += " (" + tf.units + ")";
+        text.ticks = color::legendTicks(tf);
+        text.patches = color::legendPatches(tf);
     }
-    const std::string& title = mLegendTitle;
+    const std::string& title = text.title;
     const float line = float(o.font().lineHeight());
     const float ascent = float(o.font().ascent());
     const render::Anchor at = anchorOf(mOverlayCorner.value_or(legend.position));
     if (tf.discrete()) {
-        const auto& patches = mLegendPatches;
+        const auto& patches = text.patches;
         float w = o.measure(title);
         for (const auto& p : patches) w = std::max(w, 28 + o.measure(p.label));
         const float h = line * float(patches.size() + 1) + 20;
@@ -285,7 +288,7 @@ void Session::drawLegend(const config::LegendOverlay& legend, int width, int hei
     o.text(b.x + 12, b.y + 8 + ascent, title, kText);
     const float barX = b.x + 12, barY = b.y + 12 + line;
     o.image(barX, barY, barW, barH, texture);
-    for (const auto& t : mLegendTicks) {
+    for (const auto& t : text.ticks) {
         const float tx = barX + float(t.position) * barW;
         o.rect(tx - 0.5f, barY + barH, 1, 5, kText);
         const float tw = o.measure(t.label);

@@ -60,7 +60,7 @@ protected:
     std::unique_ptr<Session> open(bool timeLabel = true) {
         auto s = Session::open("scenarios/demo/rainier.json", mCaps, [&](config::Scenario& sc) {
             sc.overlays.title.enabled = false;
-            sc.overlays.legend.enabled = false;
+            sc.overlays.legends.clear();
             sc.overlays.progress.enabled = false;
             sc.overlays.timeLabel.enabled = timeLabel;
             sc.overlays.timeLabel.position = config::Corner::TopLeft;

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -76,12 +77,12 @@ protected:
 
 TEST_F(OverlaySettings, LegendPositionMovesTheLegend) {
     const gl::Image none =
-        frame(kDemo, "overview", [](config::Scenario& s) { s.overlays.legend.enabled = false; });
+        frame(kDemo, "overview", [](config::Scenario& s) { s.overlays.legends.clear(); });
     const gl::Image bottomRight = frame(kDemo, "overview", [](config::Scenario& s) {
-        s.overlays.legend.position = config::Corner::BottomRight;
+        s.overlays.legends.at(0).position = config::Corner::BottomRight;
     });
     const gl::Image topLeft = frame(kDemo, "overview", [](config::Scenario& s) {
-        s.overlays.legend.position = config::Corner::TopLeft;
+        s.overlays.legends.at(0).position = config::Corner::TopLeft;
     });
     const DiffBox br = diff(none, bottomRight), tl = diff(none, topLeft);
     ASSERT_FALSE(br.empty());
@@ -130,7 +131,7 @@ TEST_F(OverlaySettings, ProjectiveMappingTransferFunctionHasALegend) {
     const std::string hazard = "scenarios/mappings/hazard.json";
     const gl::Image with = frame(hazard, "", nullptr);
     const gl::Image without =
-        frame(hazard, "", [](config::Scenario& s) { s.overlays.legend.enabled = false; });
+        frame(hazard, "", [](config::Scenario& s) { s.overlays.legends.clear(); });
     const DiffBox d = diff(without, with);
     ASSERT_FALSE(d.empty()) << "the hazard transfer function's legend is missing";
     EXPECT_GT(d.x0, kW / 2);
@@ -146,9 +147,9 @@ TEST_F(OverlaySettings, DifferenceLayerHasItsOwnLegend) {
     const std::string scenario = "scenarios/demo/rainier-compare-difference.json";
     const gl::Image with = frame(scenario, "flood", nullptr);
     const gl::Image without =
-        frame(scenario, "flood", [](config::Scenario& s) { s.overlays.legend.enabled = false; });
-    const gl::Image byName =
-        frame(scenario, "flood", [](config::Scenario& s) { s.overlays.legend.layer.clear(); });
+        frame(scenario, "flood", [](config::Scenario& s) { s.overlays.legends.clear(); });
+    const gl::Image byName = frame(
+        scenario, "flood", [](config::Scenario& s) { s.overlays.legends.at(0).layer.clear(); });
     const DiffBox d = diff(without, with);
     ASSERT_FALSE(d.empty()) << "the difference layer's legend is missing";
     EXPECT_GT(d.x0, kW / 2);
@@ -186,10 +187,81 @@ TEST_F(OverlaySettings, DifferenceLayerHasItsOwnLegend) {
     // The kind's title: not the function's label, exactly the legend titled by hand so.
     EXPECT_FALSE(diff(byName, with).empty()) << "the legend is titled by the function's label";
     const gl::Image titled = frame(scenario, "flood", [](config::Scenario& s) {
-        s.overlays.legend.layer.clear();
-        s.overlays.legend.title = "Difference runA - runB";
+        s.overlays.legends.at(0).layer.clear();
+        s.overlays.legends.at(0).title = "Difference runA - runB";
     });
     EXPECT_TRUE(diff(titled, with).empty());
+}
+
+// Several legends (overlays.legend as an array, as the shipped products scenario shows maximum
+// depth and arrival time): each is drawn with its own colour bar, stacked in the corner they
+// share rather than drawn over each other.
+TEST_F(OverlaySettings, LegendArrayDrawsEveryLegendStacked) {
+    const std::string scenario = "scenarios/demo/rainier-products.json";
+    std::size_t given = 0;
+    const gl::Image both =
+        frame(scenario, "flood", [&](config::Scenario& s) { given = s.overlays.legends.size(); });
+    ASSERT_EQ(given, 2u) << scenario << " no longer gives two legends";
+    const gl::Image none =
+        frame(scenario, "flood", [](config::Scenario& s) { s.overlays.legends.clear(); });
+    // The scenario lists arrival first, then maximum depth.
+    const gl::Image arrivalOnly =
+        frame(scenario, "flood", [](config::Scenario& s) { s.overlays.legends.resize(1); });
+    const gl::Image depthOnly = frame(scenario, "flood", [](config::Scenario& s) {
+        s.overlays.legends.erase(s.overlays.legends.begin());
+    });
+    const DiffBox all = diff(none, both), depth = diff(none, depthOnly),
+                  arrival = diff(none, arrivalOnly);
+    ASSERT_FALSE(depth.empty()) << "the maximum depth legend is missing";
+    ASSERT_FALSE(arrival.empty()) << "the arrival legend is missing";
+    EXPECT_GT(all.x0, kW / 2);
+    EXPECT_GT(all.y0, kH / 4);
+    // Alone, each takes the corner; together, one sits above the other.
+    EXPECT_GE(all.y1 - all.y0 + 2, (depth.y1 - depth.y0) + (arrival.y1 - arrival.y0));
+    // Each colour bar: a band of at least 5 equal rows (within 3 DN: the ramp's opacity lets
+    // the panel through) over at least 80 columns that varies along the row (the flood and the
+    // terrain seen through a panel are never so). The depth ramp (#deebf7 to #08306b) is blue
+    // on average, the arrival ramp (#fde725 to #57106e) warm.
+    auto near = [](const std::uint8_t* p, const std::uint8_t* q, int tol) {
+        return std::abs(p[0] - q[0]) <= tol && std::abs(p[1] - q[1]) <= tol &&
+               std::abs(p[2] - q[2]) <= tol;
+    };
+    struct Bars {
+        int blue = 0, warm = 0;
+    };
+    auto bars = [&](const gl::Image& img) {
+        Bars out;
+        for (int y = all.y0; y + 4 <= all.y1; ++y) {
+            int run = 0, best = 0, bestEnd = 0;
+            for (int x = all.x0; x <= all.x1; ++x) {
+                bool same = true;
+                for (int k = 1; k <= 4 && same; ++k)
+                    same = near(img.pixel(x, y), img.pixel(x, y + k), 3);
+                run = same ? run + 1 : 0;
+                if (run > best) best = run, bestEnd = x;
+            }
+            if (best < 80) continue;
+            long r = 0, b = 0;
+            bool varies = false;
+            for (int x = bestEnd - best + 1; x <= bestEnd; ++x) {
+                r += img.pixel(x, y)[0];
+                b += img.pixel(x, y)[2];
+                varies |= !near(img.pixel(x, y), img.pixel(bestEnd, y), 40);
+            }
+            if (!varies) continue;
+            (b > r ? out.blue : out.warm) += 1;
+            y += 4;  // one band counts once per 5 rows
+        }
+        return out;
+    };
+    const Bars inBoth = bars(both), inDepth = bars(depthOnly), inArrival = bars(arrivalOnly);
+    EXPECT_GE(inBoth.blue, 1) << "no depth colour bar";
+    EXPECT_GE(inBoth.warm, 1) << "no arrival colour bar";
+    EXPECT_GE(inDepth.blue, 1);
+    EXPECT_EQ(inDepth.warm, 0);
+    EXPECT_EQ(inArrival.blue, 0);
+    EXPECT_GE(inArrival.warm, 1);
+    EXPECT_EQ(bars(none).blue + bars(none).warm, 0);
 }
 
 // A transfer function without "units" shows the units the store records for the data it

@@ -49,8 +49,8 @@ TEST(ScenarioReader, FloodScenarioWithIncludeAndEveryFeature) {
     EXPECT_EQ(s.terrain.cacheBytes, 384ll << 20);  // "384 MiB"
     EXPECT_EQ(s.stores.size(), 2u);
     EXPECT_EQ(s.overlays.timeLabel.enabled, true);   // common.json
-    EXPECT_EQ(s.overlays.legend.transfer, "depth");  // flood.json
-    EXPECT_EQ(s.overlays.legend.position, Corner::BottomRight);
+    EXPECT_EQ(s.overlays.legends.at(0).transfer, "depth");  // flood.json
+    EXPECT_EQ(s.overlays.legends.at(0).position, Corner::BottomRight);
     EXPECT_TRUE(s.overlays.progress.enabled);
     EXPECT_FALSE(s.overlays.status.enabled);
     EXPECT_EQ(s.lighting.sunAltitude, 40.0);  // common.json, merged with keys below
@@ -243,15 +243,17 @@ const BadCase kBad[] = {
     {"mapping route point size",
      R"("projectiveMappings": [{"id": "r", "route": {"points": [[0, 0], [1, 2, 3]]}}])",
      "SCENARIO_TYPE", "/projectiveMappings/0/route/points/1", "array of 2 numbers"},
-    {"mapping route width", R"("projectiveMappings": [{"id": "r", "route": {"points": )"
-                            R"([[0, 0], [1, 1]], "width": 0}}])",
+    {"mapping route width",
+     R"("projectiveMappings": [{"id": "r", "route": {"points": )"
+     R"([[0, 0], [1, 1]], "width": 0}}])",
      "SCENARIO_RANGE", "/projectiveMappings/0/route/width", "width"},
     {"mapping image missing",
      R"("projectiveMappings": [{"id": "m", "origin": [0,0,0], "u": [1,0,0], "v": [0,1,0], )"
      R"("image": "no-such-atlas.png"}])",
      "SCENARIO_FILE", "/projectiveMappings/0/image", "does not exist"},
-    {"mapping without data", R"("projectiveMappings": [{"id": "m", "origin": [0,0,0], )"
-                             R"("u": [1,0,0], "v": [0,1,0]}])",
+    {"mapping without data",
+     R"("projectiveMappings": [{"id": "m", "origin": [0,0,0], )"
+     R"("u": [1,0,0], "v": [0,1,0]}])",
      "SCENARIO_MISSING", "/projectiveMappings/0", "data"},
     {"mapping context matrix size",
      R"("projectiveMappings": [{"id": "r", "route": {"points": [[0, 0], [1, 1]]}, )"
@@ -275,6 +277,14 @@ const BadCase kBad[] = {
      "/overlays/timeLabel/timeZone", "time zone \"CET\" is not supported"},
     {"legend without transfer", R"("overlays": {"legend": {}})", "SCENARIO_MISSING",
      "/overlays/legend", "the legend needs \"transfer\""},
+    {"second legend's layer",
+     R"("overlays": {"legend": [{"transfer": "t"}, {"layer": "b"}]}, )"
+     R"("transferFunctions": {"t": {"preset": "viridis"}})",
+     "SCENARIO_UNKNOWN_REFERENCE", "/overlays/legend/1/layer", "unknown layer \"b\""},
+    {"legend array item type",
+     R"("overlays": {"legend": [{"transfer": "t"}, 3]}, )"
+     R"("transferFunctions": {"t": {"preset": "viridis"}})",
+     "SCENARIO_TYPE", "/overlays/legend/1", "expected object, got number"},
     {"overlay typo", R"("overlays": {"legnd": {}})", "SCENARIO_UNKNOWN_PROPERTY", "/overlays/legnd",
      "unknown property \"legnd\" (did you mean \"legend\"?)"},
     {"cache bytes unit", R"("terrain": {"store": "v", "cacheBytes": "12 parsecs"})",
@@ -449,8 +459,8 @@ TEST(ScenarioReader, IncludeMergeRule) {
     EXPECT_EQ(s.terrain.store, "v");
     EXPECT_EQ(s.terrain.tauGeom, 1.0);
     EXPECT_EQ(s.terrain.tauTex, 2.0);
-    EXPECT_EQ(s.overlays.legend.transfer, "t");
-    EXPECT_EQ(s.overlays.legend.position, Corner::BottomLeft);
+    EXPECT_EQ(s.overlays.legends.at(0).transfer, "t");
+    EXPECT_EQ(s.overlays.legends.at(0).position, Corner::BottomLeft);
     // Named entries replace whole: "t" is now a preset, not base's stops; "u" survives.
     EXPECT_EQ(s.findTransfer("t")->origin, TransferFunctionDef::Origin::Preset);
     EXPECT_EQ(s.findTransfer("t")->function.units, "");
