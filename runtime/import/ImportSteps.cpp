@@ -1,9 +1,11 @@
 #include "runtime/import/ImportSteps.h"
 
+#include "runtime/core/TimeParse.h"
 #include "runtime/import/GeoTarget.h"
 #include "runtime/import/TileMeshes.h"
 
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 
 namespace kiosk::import {
@@ -95,6 +97,37 @@ Result<PyramidResult> importScalarLayer(io::StoreWriter& w, const PlacedSource& 
         res.diagnostics.append(meshes.diagnostics);
     }
     return res;
+}
+
+Diagnostics checkAppendsAfter(const std::vector<double>& existing, double firstNew,
+                              const std::string& file, const std::string& sequence) {
+    Diagnostics d;
+    if (!existing.empty() && firstNew <= existing.back())
+        d.error("IMPORT_TIMES_UNSORTED", file, sequence,
+                "first new frame " + formatIso8601(firstNew) +
+                    " is not after the sequence's last frame " + formatIso8601(existing.back()));
+    return d;
+}
+
+Diagnostics importSequenceFrame(io::StoreWriter& w, const PlacedSource& ps,
+                                const ScalarRowSource& rows,
+                                std::optional<std::pair<double, double>> range,
+                                const std::string& sequence, int index, double epochSeconds,
+                                const std::string& units, bool categorical, const ImportOptions& o,
+                                const std::string& src, Progress& progress) {
+    char table[128];
+    std::snprintf(table, sizeof table, "%s_f%04d", sequence.c_str(), index);
+    ScalarImport si;
+    si.table = table;
+    si.kind = io::LayerKind::Sequence;
+    si.units = units;
+    si.categorical = categorical;
+    si.minStep = 1.0 / 4096.0;
+    auto r = importScalarLayer(w, ps, rows, range, si, o, src, progress);
+    if (!r) return r.diagnostics;
+    Diagnostics d = r.diagnostics;
+    d.append(w.addSequenceFrame(sequence, index, epochSeconds, table, r->minValue, r->maxValue));
+    return d;
 }
 
 }  // namespace kiosk::import

@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace kiosk::import {
 
@@ -52,6 +53,24 @@ Result<PyramidResult> importScalarLayer(io::StoreWriter& w, const PlacedSource& 
                                         std::optional<std::pair<double, double>> range,
                                         const ScalarImport& si, const ImportOptions& o,
                                         const std::string& src, Progress& progress);
+
+/**
+ * @brief Frames appended to a sequence must come after the ones it holds: the error (against
+ * `file`) when `firstNew` is not after the last of `existing`, else none.
+ */
+Diagnostics checkAppendsAfter(const std::vector<double>& existing, double firstNew,
+                              const std::string& file, const std::string& sequence);
+
+/**
+ * @brief Frame `index` of `sequence` at `epochSeconds`: its scalar layer (table
+ * "<sequence>_f<index>") built from `rows`, then its row in the sequence's frame list.
+ */
+Diagnostics importSequenceFrame(io::StoreWriter& w, const PlacedSource& ps,
+                                const ScalarRowSource& rows,
+                                std::optional<std::pair<double, double>> range,
+                                const std::string& sequence, int index, double epochSeconds,
+                                const std::string& units, bool categorical, const ImportOptions& o,
+                                const std::string& src, Progress& progress);
 
 // The import kinds Importer.cpp dispatches to (each inside its temporary-store transaction).
 /** @brief `import elevation` of a GDAL raster or an SWW file's bed (RasterImport.cpp). */

@@ -69,13 +69,8 @@ static Diagnostics importSequenceImpl(const std::vector<std::string>& sources,
         e.append(units.start());
         if (e.hasErrors()) return e;
         const auto existing = w.sequenceTimes(o.name);
-        if (!existing.empty() && *frames->front().time <= existing.back()) {
-            e.error("IMPORT_TIMES_UNSORTED", frames->front().file, o.name,
-                    "first new frame " + formatIso8601(*frames->front().time) +
-                        " is not after the sequence's last frame " +
-                        formatIso8601(existing.back()));
-            return e;
-        }
+        e.append(checkAppendsAfter(existing, *frames->front().time, frames->front().file, o.name));
+        if (e.hasErrors()) return e;
         GdalDataset likeDs;
         if (like) {
             auto l = openRaster(*like);
@@ -128,20 +123,9 @@ static Diagnostics importSequenceImpl(const std::vector<std::string>& sources,
             po.nearest = categorical;
             auto ps = placeSource(w, std::move(ds), po, o.tileSize, warnings);
             if (!ps) return ps.diagnostics;
-            const int index = int(existing.size() + i);
-            char table[128];
-            std::snprintf(table, sizeof table, "%s_f%04d", o.name.c_str(), index);
-            ScalarImport si;
-            si.table = table;
-            si.kind = io::LayerKind::Sequence;
-            si.units = spec.units;
-            si.categorical = categorical;
-            si.minStep = 1.0 / 4096.0;
-            auto r = importScalarLayer(w, *ps, scalarRows(*ps, fr.band, o.zScale, fr.file), range,
-                                       si, o, fr.file, progress);
-            if (!r) return r.diagnostics;
-            e.append(r.diagnostics);
-            e.append(w.addSequenceFrame(o.name, index, *fr.time, table, r->minValue, r->maxValue));
+            e.append(importSequenceFrame(w, *ps, scalarRows(*ps, fr.band, o.zScale, fr.file), range,
+                                         o.name, int(existing.size() + i), *fr.time, spec.units,
+                                         categorical, o, fr.file, progress));
             if (e.hasErrors()) return e;
         }
         return e;

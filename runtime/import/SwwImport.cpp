@@ -148,13 +148,8 @@ Diagnostics importSww(const std::string& source, const ImportOptions& o) {
                            fs::path(source).filename().string();
         e.append(w.createSequence(spec));
         const auto existing = w.sequenceTimes(o.name);
-        if (!existing.empty() && times.front() <= existing.back()) {
-            e.error("IMPORT_TIMES_UNSORTED", source, o.name,
-                    "first new frame " + formatIso8601(times.front()) +
-                        " is not after the sequence's last frame " +
-                        formatIso8601(existing.back()));
-            return e;
-        }
+        e.append(checkAppendsAfter(existing, times.front(), source, o.name));
+        if (e.hasErrors()) return e;
         PlacedSource ps;
         ps.window = *win;
         for (int s = 0; s < mesh->steps(); ++s) {
@@ -166,21 +161,10 @@ Diagnostics importSww(const std::string& source, const ImportOptions& o) {
                 lo = std::min(lo, dv);
                 hi = std::max(hi, dv);
             }
-            const int index = int(existing.size()) + s;
-            char table[128];
-            std::snprintf(table, sizeof table, "%s_f%04d", o.name.c_str(), index);
-            ScalarImport si;
-            si.table = table;
-            si.kind = io::LayerKind::Sequence;
-            si.units = spec.units;
-            si.minStep = 1.0 / 4096.0;
             auto rows = mesh->rasterize(g, *win, std::move(*depth), o.wetThreshold);
-            auto r =
-                importScalarLayer(w, ps, rows, std::make_pair(lo, hi), si, o, source, progress);
-            if (!r) return r.diagnostics;
-            e.append(r.diagnostics);
-            e.append(w.addSequenceFrame(o.name, index, times[std::size_t(s)], table, r->minValue,
-                                        r->maxValue));
+            e.append(importSequenceFrame(w, ps, rows, std::make_pair(lo, hi), o.name,
+                                         int(existing.size()) + s, times[std::size_t(s)],
+                                         spec.units, false, o, source, progress));
             if (e.hasErrors()) return e;
         }
         return e;

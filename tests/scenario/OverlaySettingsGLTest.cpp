@@ -254,14 +254,15 @@ TEST_F(OverlaySettings, LegendArrayDrawsEveryLegendStacked) {
         }
         return out;
     };
-    const Bars inBoth = bars(both), inDepth = bars(depthOnly), inArrival = bars(arrivalOnly);
+    const Bars inBoth = bars(both), inDepth = bars(depthOnly), inArrival = bars(arrivalOnly),
+               inNone = bars(none);
     EXPECT_GE(inBoth.blue, 1) << "no depth colour bar";
     EXPECT_GE(inBoth.warm, 1) << "no arrival colour bar";
     EXPECT_GE(inDepth.blue, 1);
     EXPECT_EQ(inDepth.warm, 0);
     EXPECT_EQ(inArrival.blue, 0);
     EXPECT_GE(inArrival.warm, 1);
-    EXPECT_EQ(bars(none).blue + bars(none).warm, 0);
+    EXPECT_EQ(inNone.blue + inNone.warm, 0);
 }
 
 // A transfer function without "units" shows the units the store records for the data it
