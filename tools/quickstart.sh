@@ -11,7 +11,7 @@ MODE=${1:-}
 JOBS=${KIOSK_JOBS:-$(nproc)}
 
 # Debian 12 packages. Runtime/build first, then what only the tests need.
-BUILD_PKGS=(build-essential cmake ninja-build pkg-config git
+BUILD_PKGS=(build-essential cmake ninja-build ccache pkg-config git
     libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libgbm-dev libdrm-dev libx11-dev
     libglm-dev libopenimageio-dev libsqlite3-dev nlohmann-json3-dev libgtest-dev
     libgdal-dev gdal-bin libnetcdf-dev libfreetype-dev fonts-dejavu-core
