@@ -2,6 +2,7 @@
 
 #include "runtime/color/ColorImport.h"
 #include "runtime/color/ColorText.h"
+#include "runtime/color/GmtColorNames.h"
 
 #include <nlohmann/json.hpp>
 
@@ -119,62 +120,159 @@ Result<TransferFunction> parseFloatRgbList(std::string_view text, const std::str
 
 namespace {
 
-// A GMT colour starting at tok[i]: `r g b` (3 tokens), `r/g/b`, `#hex`, grey, or a name.
-// Advances i past it; nullopt with `error` set otherwise.
-std::optional<Rgba> cptColour(const std::vector<std::string>& tok, std::size_t& i,
-                              std::string& error) {
+// GMT's HSV convention: h in degrees 0..360, s and v in 0..1.
+struct Hsv {
+    double h = 0, s = 0, v = 0;
+};
+
+Rgba hsvToRgb(const Hsv& c) {
+    if (c.s == 0) return Rgba{float(c.v), float(c.v), float(c.v), 1.0f};
+    const double h = 6.0 * std::fmod(c.h, 360.0) / 360.0;
+    const int sextant = int(std::floor(h));
+    const double f = h - sextant;
+    const double p = c.v * (1 - c.s), q = c.v * (1 - c.s * f), t = c.v * (1 - c.s * (1 - f));
+    double r = c.v, g = t, b = p;
+    switch (sextant) {
+        case 1:
+            r = q, g = c.v, b = p;
+            break;
+        case 2:
+            r = p, g = c.v, b = t;
+            break;
+        case 3:
+            r = p, g = q, b = c.v;
+            break;
+        case 4:
+            r = t, g = p, b = c.v;
+            break;
+        case 5:
+            r = c.v, g = p, b = q;
+            break;
+        default:
+            break;
+    }
+    return Rgba{float(r), float(g), float(b), 1.0f};
+}
+
+Hsv rgbToHsv(const Rgba& c) {
+    const double rgb[3] = {c.r, c.g, c.b};
+    int hi = 0, lo = 0;
+    for (int k = 1; k < 3; ++k) {
+        if (rgb[k] > rgb[hi]) hi = k;
+        if (rgb[k] < rgb[lo]) lo = k;
+    }
+    const double range = rgb[hi] - rgb[lo];
+    Hsv out{0, rgb[hi] == 0 ? 0 : range / rgb[hi], rgb[hi]};
+    if (out.s == 0) return out;  // grey: hue undefined, GMT takes 0
+    out.h = 120.0 * hi + 60.0 * (rgb[(hi + 1) % 3] - rgb[(hi + 2) % 3]) / range;
+    if (out.h < 0) out.h += 360;
+    return out;
+}
+
+/** @brief A colour of a .cpt: its RGB, and its HSV when the table's model is HSV. */
+struct CptColour {
+    Rgba rgb;
+    Hsv hsv;
+};
+
+// A GMT colour starting at tok[i]: `r g b` (3 tokens; `h s v` in the HSV model), `r/g/b`,
+// `h-s-v`, `#hex`, grey, or a name. Advances i past it; nullopt with `error` set otherwise.
+std::optional<CptColour> cptColour(const std::vector<std::string>& tok, std::size_t& i,
+                                   bool hsvModel, std::string& error) {
     if (i >= tok.size()) {
         error = "a colour is missing";
         return std::nullopt;
     }
     const std::string& t = tok[i];
-    auto component = [&](const std::string& s) -> std::optional<double> {
+    auto number = [&](const std::string& s, int max) -> std::optional<double> {
         auto n = toNumber(s);
         if (!n) {
             error = "colour component \"" + s + "\" is not a number";
             return std::nullopt;
         }
-        if (*n < 0 || *n > 255) {
-            error = "colour component " + s + " is outside 0..255";
+        if (*n < 0 || *n > max) {
+            error = "colour component " + s + " is outside 0.." + std::to_string(max);
             return std::nullopt;
         }
         return n;
     };
+    auto fromHsv = [&](const std::string& h, const std::string& s,
+                       const std::string& v) -> std::optional<CptColour> {
+        auto hh = number(h, 360), ss = number(s, 1), vv = number(v, 1);
+        if (!hh || !ss || !vv) return std::nullopt;
+        const Hsv c{*hh, *ss, *vv};
+        return CptColour{hsvToRgb(c), c};
+    };
+    auto fromRgb = [&](const Rgba& c) { return CptColour{c, rgbToHsv(c)}; };
     if (t.find('/') != std::string::npos) {
         const auto parts = tokens(t, "/");
         if (parts.size() != 3) {
             error = "colour \"" + t + "\" is not r/g/b";
             return std::nullopt;
         }
-        auto r = component(parts[0]), g = component(parts[1]), b = component(parts[2]);
+        auto r = number(parts[0], 255), g = number(parts[1], 255), b = number(parts[2], 255);
         if (!r || !g || !b) return std::nullopt;
         ++i;
-        return rgb255(*r, *g, *b);
-    }
-    if (t.find('-') != std::string::npos && t.front() != '-') {
-        error = "h-s-v colour \"" + t + "\" is not supported (use r/g/b or # COLOR_MODEL = RGB)";
-        return std::nullopt;
+        return fromRgb(rgb255(*r, *g, *b));
     }
     if (toNumber(t)) {
-        // Three numbers are r g b; a lone number before the next z (or the end) is a grey.
+        // Three numbers are r g b (h s v); a lone number before the next z (or the end) is a
+        // grey 0..255 in either model, as in GMT.
         if (i + 2 < tok.size() && toNumber(tok[i + 1]) && toNumber(tok[i + 2]) &&
             tok.size() - i != 4) {
-            auto r = component(tok[i]), g = component(tok[i + 1]), b = component(tok[i + 2]);
-            if (!r || !g || !b) return std::nullopt;
             i += 3;
-            return rgb255(*r, *g, *b);
+            if (hsvModel) return fromHsv(tok[i - 3], tok[i - 2], tok[i - 1]);
+            auto r = number(tok[i - 3], 255), g = number(tok[i - 2], 255),
+                 b = number(tok[i - 1], 255);
+            if (!r || !g || !b) return std::nullopt;
+            return fromRgb(rgb255(*r, *g, *b));
         }
-        auto v = component(t);
+        auto v = number(t, 255);
         if (!v) return std::nullopt;
         ++i;
-        return rgb255(*v, *v, *v);
+        return fromRgb(rgb255(*v, *v, *v));
+    }
+    if (t.find('-') != std::string::npos && t.front() != '-' && t.front() != '#') {
+        const auto parts = tokens(t, "-");
+        if (parts.size() != 3) {
+            error = "colour \"" + t + "\" is not h-s-v";
+            return std::nullopt;
+        }
+        ++i;
+        return fromHsv(parts[0], parts[1], parts[2]);
+    }
+    // GMT's names first: they are X11's, which differ from CSS's for gray, green, maroon and
+    // purple. The few names only parseColor knows (transparent, indigo, teal, ...) still read.
+    if (auto c = t.front() == '#' ? std::nullopt : gmtNamedColor(t)) {
+        ++i;
+        return fromRgb(*c);
     }
     if (auto c = parseColor(t)) {
         ++i;
-        return c;
+        return fromRgb(*c);
     }
     error = "unknown colour \"" + t + "\"";
     return std::nullopt;
+}
+
+// GMT interpolates an HSV table's slices in h, s and v. The slice becomes sRGB stops at every
+// sextant boundary its hue crosses (between them RGB is linear in h at fixed s and v), and at
+// 16 even steps when s or v change too, so the LUT follows GMT's colours within 1 DN.
+void addHsvSlice(TransferFunction& tf, double z0, const Hsv& a, double z1, const Hsv& b) {
+    std::vector<double> ts{0.0, 1.0};
+    if (a.h != b.h) {
+        const double lo = std::min(a.h, b.h), hi = std::max(a.h, b.h);
+        for (double edge = std::floor(lo / 60) * 60 + 60; edge < hi; edge += 60)
+            ts.push_back((edge - a.h) / (b.h - a.h));
+    }
+    if (a.s != b.s || a.v != b.v)
+        for (int k = 1; k < 16; ++k) ts.push_back(k / 16.0);
+    std::sort(ts.begin(), ts.end());
+    ts.erase(std::unique(ts.begin(), ts.end()), ts.end());
+    for (double t : ts) {
+        const Hsv c{a.h + t * (b.h - a.h), a.s + t * (b.s - a.s), a.v + t * (b.v - a.v)};
+        tf.stops.push_back({t == 1.0 ? z1 : z0 + t * (z1 - z0), hsvToRgb(c)});
+    }
 }
 
 }  // namespace
@@ -183,14 +281,18 @@ Result<TransferFunction> parseCpt(std::string_view text, const std::string& file
     TransferFunction tf;
     tf.name = std::filesystem::path(file).stem().string();
     tf.space = Space::Srgb;  // GMT interpolates r, g, b linearly in the RGB model
-    bool continuous = false, categorical = false;
+    bool continuous = false, categorical = false, hsvModel = false;
     for (const Line& l : lines(text)) {
         if (!l.comment.empty()) {
             auto c = tokens(l.comment, "=");
-            if (c.size() == 2 && c[0] == "COLOR_MODEL" && lower(c[1]) != "rgb" &&
-                lower(c[1]) != "+rgb")
-                return failAt("COLOR_CPT_UNSUPPORTED", file, l.number,
-                              "colour model " + c[1] + " is not supported (only RGB)");
+            if (c.size() == 2 && c[0] == "COLOR_MODEL") {
+                // A leading '+' (as GMT 5 writes some tables) names the same model.
+                const std::string model = lower(c[1][0] == '+' ? c[1].substr(1) : c[1]);
+                if (model != "rgb" && model != "hsv")
+                    return failAt("COLOR_CPT_UNSUPPORTED", file, l.number,
+                                  "colour model " + c[1] + " is not supported (RGB or HSV)");
+                hsvModel = model == "hsv";
+            }
             continue;
         }
         std::string body = l.text, label;
@@ -210,18 +312,18 @@ Result<TransferFunction> parseCpt(std::string_view text, const std::string& file
         const std::string key = tok[0];
         if (key == "B" || key == "F" || key == "N") {
             std::size_t i = 1;
-            auto c = cptColour(tok, i, error);
+            auto c = cptColour(tok, i, hsvModel, error);
             if (!c || i != tok.size())
                 return failAt("COLOR_CPT_SYNTAX", file, l.number,
                               error.empty() ? "expected `" + key + " colour`" : error);
             if (key == "B") {
-                tf.below = *c;
+                tf.below = c->rgb;
                 tf.belowGiven = true;
             } else if (key == "F") {
-                tf.above = *c;
+                tf.above = c->rgb;
                 tf.aboveGiven = true;
             } else {
-                tf.nodata = *c;
+                tf.nodata = c->rgb;
             }
             continue;
         }
@@ -230,15 +332,15 @@ Result<TransferFunction> parseCpt(std::string_view text, const std::string& file
             return failAt("COLOR_CPT_SYNTAX", file, l.number,
                           "\"" + key + "\" is not a z value (nor B, F or N)");
         std::size_t i = 1;
-        auto c0 = cptColour(tok, i, error);
+        auto c0 = cptColour(tok, i, hsvModel, error);
         if (!c0) return failAt("COLOR_CPT_SYNTAX", file, l.number, error);
         if (i == tok.size()) {  // `key colour [;label]`: a categorical entry
             categorical = true;
-            tf.classes.push_back({*z0, *c0, label});
+            tf.classes.push_back({*z0, c0->rgb, label});
         } else {
             continuous = true;
             auto z1 = toNumber(tok[i++]);
-            auto c1 = z1 ? cptColour(tok, i, error) : std::nullopt;
+            auto c1 = z1 ? cptColour(tok, i, hsvModel, error) : std::nullopt;
             if (!z1 || !c1 || i != tok.size())
                 return failAt("COLOR_CPT_SYNTAX", file, l.number,
                               !error.empty() ? error : "expected `z0 colour z1 colour`");
@@ -249,8 +351,12 @@ Result<TransferFunction> parseCpt(std::string_view text, const std::string& file
                 return failAt("COLOR_CPT_RANGE", file, l.number,
                               "slices must increase (" + key + " after " +
                                   std::to_string(tf.stops.back().value) + ")");
-            tf.stops.push_back({*z0, *c0});
-            tf.stops.push_back({*z1, *c1});
+            if (hsvModel) {
+                addHsvSlice(tf, *z0, c0->hsv, *z1, c1->hsv);
+            } else {
+                tf.stops.push_back({*z0, c0->rgb});
+                tf.stops.push_back({*z1, c1->rgb});
+            }
         }
         if (continuous && categorical)
             return failAt("COLOR_CPT_SYNTAX", file, l.number,

@@ -26,12 +26,14 @@ Result<TransferFunction> parseFloatRgbList(std::string_view text, const std::str
 
 /**
  * @brief A GMT colour palette table (`.cpt`, GMT 4 to 6): slices `z0 C0 z1 C1 [L|U|B] [;label]`
- * where a colour C is `r g b`, `r/g/b`, `#rrggbb`, a grey `0..255` or a colour name; `B`, `F`
- * and `N` lines give the colours below the range, above it and for nodata; `#` comments,
- * `# COLOR_MODEL = RGB` accepted (HSV and CMYK models are refused). Each slice becomes two stops
- * (a colour jump between slices is a step). A categorical table (`key C [;label]` lines, GMT 5+)
- * becomes classes with the labels. Codes: COLOR_CPT_SYNTAX, COLOR_CPT_RANGE,
- * COLOR_CPT_UNSUPPORTED, COLOR_CPT_EMPTY, naming file:line.
+ * where a colour C is `r g b`, `r/g/b`, `h-s-v`, `#rrggbb`, a grey `0..255` or one of GMT's
+ * colour names (GmtColorNames.h); `B`, `F` and `N` lines give the colours below the range, above
+ * it and for nodata; `#` comments. `# COLOR_MODEL = RGB` (the default) interpolates slices in
+ * RGB; `# COLOR_MODEL = HSV` reads `h s v` triplets (h 0..360, s and v 0..1) and interpolates
+ * slices in HSV as GMT does (CMYK is refused). Each RGB slice becomes two stops (a colour jump
+ * between slices is a step). A categorical table (`key C [;label]` lines, GMT 5+) becomes
+ * classes with the labels. Codes: COLOR_CPT_SYNTAX, COLOR_CPT_RANGE, COLOR_CPT_UNSUPPORTED,
+ * COLOR_CPT_EMPTY, naming file:line.
  */
 Result<TransferFunction> parseCpt(std::string_view text, const std::string& file);
 

@@ -110,10 +110,85 @@ TEST(ColorMapFiles, BrokenCptGivesOneErrorWithItsLine) {
     EXPECT_EQ(errorCount(r.diagnostics), 1u) << r.diagnostics.format();
     EXPECT_EQ(r.diagnostics.firstError()->code, "COLOR_CPT_SYNTAX");
     EXPECT_EQ(r.diagnostics.firstError()->line, 2);
-    auto hsv = parseCpt("# COLOR_MODEL = HSV\n0 0-1-1 1 120-1-1\n", "hsv.cpt");
-    ASSERT_FALSE(hsv.ok());
-    EXPECT_EQ(hsv.diagnostics.firstError()->code, "COLOR_CPT_UNSUPPORTED");
-    EXPECT_EQ(hsv.diagnostics.firstError()->line, 1);
+    auto cmyk = parseCpt("# COLOR_MODEL = CMYK\n0 0/0/0/1 1 1/0/0/0\n", "cmyk.cpt");
+    ASSERT_FALSE(cmyk.ok());
+    EXPECT_EQ(cmyk.diagnostics.firstError()->code, "COLOR_CPT_UNSUPPORTED");
+    EXPECT_EQ(cmyk.diagnostics.firstError()->line, 1);
+    auto hue = parseCpt("# COLOR_MODEL = hsv\n0 0-1-1 1 120-1-1\n1 120-1-1 2 400-1-1\n", "h.cpt");
+    ASSERT_FALSE(hue.ok());
+    EXPECT_EQ(hue.diagnostics.firstError()->code, "COLOR_CPT_SYNTAX");
+    EXPECT_EQ(hue.diagnostics.firstError()->line, 3);
+    auto name = parseCpt("0 gray80 1 grey101\n", "n.cpt");
+    ASSERT_FALSE(name.ok());
+    EXPECT_EQ(name.diagnostics.firstError()->code, "COLOR_CPT_SYNTAX");
+    EXPECT_EQ(name.diagnostics.firstError()->line, 1);
+}
+
+// The names gmt-common's palettes use, and GMT's own additions; values from GMT's colour table
+// (X11's: gray is 190 and green 0/255/0 there, not CSS's 128).
+TEST(ColorMapFiles, GmtColourNamesTakeGmtValues) {
+    const std::string text =
+        "0\tmediumaquamarine\t1\tgray80\n"
+        "1\tdarkorange1\t2\tMediumSeaGreen\n"
+        "2\tgray\t3\tgreen\n"
+        "3\tlightred\t4\tgrey0\n"
+        "B\tnavyblue\n"
+        "F\tdarkyellow\n"
+        "N\tgray50\n";
+    const auto file = writeFile("named.cpt", text);
+    auto r = importColorMapFile(file);
+    ASSERT_TRUE(r.ok()) << r.diagnostics.format();
+    const TransferFunction& tf = *r.value;
+    using C = std::array<int, 4>;
+    ASSERT_EQ(tf.stops.size(), 8u);
+    EXPECT_EQ(test::dn(tf.stops[0].color), (C{102, 205, 170, 255}));
+    EXPECT_EQ(test::dn(tf.stops[1].color), (C{204, 204, 204, 255}));
+    EXPECT_EQ(test::dn(tf.stops[2].color), (C{255, 127, 0, 255}));
+    EXPECT_EQ(test::dn(tf.stops[3].color), (C{60, 179, 113, 255}));
+    EXPECT_EQ(test::dn(tf.stops[4].color), (C{190, 190, 190, 255}));
+    EXPECT_EQ(test::dn(tf.stops[5].color), (C{0, 255, 0, 255}));
+    EXPECT_EQ(test::dn(tf.stops[6].color), (C{255, 128, 128, 255}));
+    EXPECT_EQ(test::dn(tf.stops[7].color), (C{0, 0, 0, 255}));
+    EXPECT_EQ(test::dn(tf.shade(-1.0)), (C{0, 0, 128, 255}));
+    EXPECT_EQ(test::dn(tf.shade(9.0)), (C{128, 128, 0, 255}));
+    EXPECT_EQ(test::dn(tf.shade(std::nan(""))), (C{127, 127, 127, 255}));
+}
+
+// GMT's rainbow.cpt layout (`h-s-v` colours, GMT 5/6) and GMT 4's `z h s v z h s v`: slices are
+// interpolated in HSV, so the midpoints are GMT's hsv-to-rgb of the interpolated h, s, v.
+TEST(ColorMapFiles, HsvCptInterpolatesInHsvLikeGmt) {
+    const std::string text =
+        "# COLOR_MODEL = hsv\n"
+        "0\t300-1-1\t1\t240-1-1\n"
+        "1\t240-1-1\t2\t0-1-1\n"
+        "2 0 0 1 3 120 1 0.5\n"
+        "B\t0-0-0\n"
+        "F\t60 1 1\n"
+        "N\t128\n";
+    const auto file = writeFile("rainbow.cpt", text);
+    auto r = importColorMapFile(file);
+    ASSERT_TRUE(r.ok()) << r.diagnostics.format();
+    const TransferFunction& tf = *r.value;
+    using C = std::array<int, 4>;
+    EXPECT_DOUBLE_EQ(tf.domainMin, 0.0);
+    EXPECT_DOUBLE_EQ(tf.domainMax, 3.0);
+    EXPECT_EQ(test::dn(tf.evaluate(0.0)), (C{255, 0, 255, 255}));   // h 300
+    EXPECT_EQ(test::dn(tf.evaluate(0.25)), (C{191, 0, 255, 255}));  // h 285
+    EXPECT_EQ(test::dn(tf.evaluate(1.0)), (C{0, 0, 255, 255}));     // h 240
+    // Through cyan, green and yellow: hue 240 down to 0 crosses four sextants.
+    EXPECT_EQ(test::dn(tf.evaluate(1.25)), (C{0, 255, 255, 255}));   // h 180
+    EXPECT_EQ(test::dn(tf.evaluate(1.375)), (C{0, 255, 128, 255}));  // h 150
+    EXPECT_EQ(test::dn(tf.evaluate(1.5)), (C{0, 255, 0, 255}));      // h 120
+    EXPECT_EQ(test::dn(tf.evaluate(1.75)), (C{255, 255, 0, 255}));   // h 60
+    EXPECT_EQ(test::dn(tf.evaluate(1.9)), (C{255, 102, 0, 255}));    // h 24
+    // s and v change too: h 60, s 0.5, v 0.75 halfway; within 1 DN between the sub-stops.
+    EXPECT_EQ(test::dn(tf.evaluate(2.5)), (C{191, 191, 96, 255}));
+    const C at = test::dn(tf.evaluate(2.3));  // h 36, s 0.3, v 0.85
+    const C gmt{217, 191, 152, 255};
+    for (std::size_t k = 0; k < 4; ++k) EXPECT_NEAR(at[k], gmt[k], 1) << k;
+    EXPECT_EQ(test::dn(tf.shade(-1.0)), (C{0, 0, 0, 255}));
+    EXPECT_EQ(test::dn(tf.shade(4.0)), (C{255, 255, 0, 255}));
+    EXPECT_EQ(test::dn(tf.shade(std::nan(""))), (C{128, 128, 128, 255}));
 }
 
 TEST(ColorMapFiles, GrassRulesWithDefaultAndPercent) {
