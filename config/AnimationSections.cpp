@@ -53,13 +53,9 @@ void Reader::lenses(const json& arr) {
         assign(l.id, o.name("id", true));
         assign(l.kind, o.oneOf("kind", kLensKinds, true));
         auto shape = o.oneOf("shape", kLensShapes);
-        assign(l.center, o.numbers<2>("center", true));
-        auto radius = o.num("radius", kPositive);
-        auto radii = o.numbers<2>("radii");
-        if (radii && !((*radii)[0] > 0 && (*radii)[1] > 0)) {
-            mC.error("SCENARIO_RANGE", o.at("radii"), "radii must be > 0");
-            radii.reset();
-        }
+        assign(l.center, o.numbers<2>("center", kMapCoordinate, true));
+        auto radius = o.num("radius", kMapLength);
+        auto radii = o.numbers<2>("radii", kMapLength);
         l.shape = shape.value_or(o.has("radii") ? LensShape::Ellipse : LensShape::Circle);
         if (l.shape == LensShape::Swipe && (o.has("radius") || o.has("radii")))
             mC.error("SCENARIO_CONFLICT", ptr,
@@ -76,7 +72,7 @@ void Reader::lenses(const json& arr) {
         if (radius) l.radii = {*radius, *radius};
         if (radii) l.radii = *radii;
         assign(l.rotation, o.num("rotation", Range{-360, 360}));
-        assign(l.softEdge, o.num("softEdge", kNonNegative));
+        assign(l.softEdge, o.num("softEdge", kMapWidth));
         assign(l.raise, o.num("raise", kUnit));
         assign(l.lower, o.num("lower", kUnit));
         if (l.kind == LensKind::Comparison) {
@@ -101,9 +97,9 @@ void Reader::lenses(const json& arr) {
                 LensKey key;
                 key.pointer = ko.ptr();
                 assign(key.time, ko.time("time", true));
-                key.center = ko.numbers<2>("center");
-                if (auto r = ko.num("radius", kPositive)) key.radii = Vec2{*r, *r};
-                if (auto r = ko.numbers<2>("radii")) key.radii = r;
+                key.center = ko.numbers<2>("center", kMapCoordinate);
+                if (auto r = ko.num("radius", kMapLength)) key.radii = Vec2{*r, *r};
+                if (auto r = ko.numbers<2>("radii", kMapLength)) key.radii = r;
                 if (key.radii && l.shape == LensShape::Swipe)
                     mC.error("SCENARIO_CONFLICT", ko.ptr(), "a swipe lens has no radius to key");
                 key.rotation = ko.num("rotation", Range{-360, 360});
@@ -125,21 +121,21 @@ void Reader::mappings(const json& arr) {
         assign(m.id, o.name("id", true));
         // A route brings its own geometry; an image or a route its own data layer.
         const bool routed = o.has("route");
-        assign(m.origin, o.numbers<3>("origin", !routed));
-        assign(m.u, o.numbers<3>("u", !routed));
-        assign(m.v, o.numbers<3>("v", !routed));
-        assign(m.textureMatrix, o.numbers<9>("textureMatrix"));
+        assign(m.origin, o.numbers<3>("origin", kMapCoordinate, !routed));
+        assign(m.u, o.numbers<3>("u", kMapCoordinate, !routed));
+        assign(m.v, o.numbers<3>("v", kMapCoordinate, !routed));
+        assign(m.textureMatrix, o.numbers<9>("textureMatrix", kMatrixEntry));
         if (auto img = o.str("image")) {
             m.image = mC.resolve(o.at("image"), *img);
             fileExists(m.image, o.at("image"));
         }
         if (const json* r = o.object("route")) m.route = route(*r, o.at("route"));
-        m.contextMatrix = o.numbers<16>("contextMatrix");
+        m.contextMatrix = o.numbers<16>("contextMatrix", kMatrixEntry);
         assign(m.layer, o.name("layer"));
         if (const json* d = o.get("data", !routed && !o.has("image") && !o.has("layer")))
             assign(m.data, source(*d, o.at("data")));
         assign(m.transfer, o.name("transfer"));
-        assign(m.colorMatrix, o.numbers<16>("colorMatrix"));
+        assign(m.colorMatrix, o.numbers<16>("colorMatrix", kMatrixEntry));
         if (const json* b = o.get("blend")) {
             Obj bo(mC, *b, o.at("blend"), "MappingBlend");
             assign(m.src, bo.oneOf("src", kBlendFactors));
@@ -160,11 +156,11 @@ void Reader::mappings(const json& arr) {
                 MappingKey key;
                 key.pointer = ko.ptr();
                 assign(key.time, ko.time("time", true));
-                key.origin = ko.numbers<3>("origin");
-                key.u = ko.numbers<3>("u");
-                key.v = ko.numbers<3>("v");
-                key.textureMatrix = ko.numbers<9>("textureMatrix");
-                key.colorMatrix = ko.numbers<16>("colorMatrix");
+                key.origin = ko.numbers<3>("origin", kMapCoordinate);
+                key.u = ko.numbers<3>("u", kMapCoordinate);
+                key.v = ko.numbers<3>("v", kMapCoordinate);
+                key.textureMatrix = ko.numbers<9>("textureMatrix", kMatrixEntry);
+                key.colorMatrix = ko.numbers<16>("colorMatrix", kMatrixEntry);
                 key.opacity = ko.num("opacity", kUnit);
                 m.keys.push_back(key);
             }
@@ -182,7 +178,8 @@ MappingRoute Reader::route(const json& j, const std::string& ptr) {
     if (!o.valid()) return r;
     if (const json* pts = o.array("points", true)) {
         for (std::size_t i = 0; i < pts->size(); ++i)
-            if (auto p = readNumbers<2>(mC, (*pts)[i], childPointer(o.at("points"), i)))
+            if (auto p = readNumbers<2>(mC, (*pts)[i], childPointer(o.at("points"), i),
+                                        kMapCoordinate, "point"))
                 r.points.push_back(*p);
         if (pts->size() < 2)
             mC.error("SCENARIO_RANGE", o.at("points"), "a route needs at least 2 way points");

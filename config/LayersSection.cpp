@@ -63,7 +63,7 @@ void Reader::layers(const json& arr) {
             }
         }
         assign(l.interpolate, o.oneOf("interpolate", kInterpolations));
-        if (auto v = o.num("nodataAs")) l.nodataAs = v;
+        if (auto v = o.num("nodataAs", kDataValue)) l.nodataAs = v;
         l.operands = layerIds(o, "of");
         if (kind && section)
             section->read(mC, o, l);

@@ -101,6 +101,21 @@ inline const Range kAny{};
 inline const Range kPositive{0, HUGE_VAL, true, false};
 inline const Range kNonNegative{0, HUGE_VAL, false, false};
 inline const Range kUnit{0, 1, false, false};
+// Bounds of the values that reach the GPU as 32-bit floats (docs/scenario-format.md, "Ranges"),
+// so that `validate` refuses what would turn into inf or lose all precision in a shader.
+/** @brief Map coordinates (store CRS metres), components of mapping vectors: 1e8 m is more than
+ *  twice the Earth's circumference, so no map reaches it, and a float still resolves 8 m there. */
+inline const Range kMapCoordinate{-1e8, 1e8, false, false};
+/** @brief Lens radii, camera ranges: lengths on a map, as kMapCoordinate. */
+inline const Range kMapLength{0, 1e8, true, false};
+/** @brief Widths that may be 0 (a lens's soft edge). */
+inline const Range kMapWidth{0, 1e8, false, false};
+/** @brief Data values (stops, domains, thresholds): a float reaches 3.4e38, and the shaders
+ *  subtract and divide them, so differences must stay finite too. */
+inline const Range kDataValue{-1e30, 1e30, false, false};
+inline const Range kDataStep{0, 1e30, true, false};
+/** @brief Entries of texture, colour and context matrices. */
+inline const Range kMatrixEntry{-1e6, 1e6, false, false};
 
 template <class E>
 using EnumTable = std::vector<std::pair<std::string, E>>;
@@ -109,7 +124,9 @@ std::optional<double> readNumber(Ctx& c, const json& j, const std::string& ptr, 
                                  const std::string& name);
 
 template <std::size_t N>
-std::optional<std::array<double, N>> readNumbers(Ctx& c, const json& j, const std::string& ptr) {
+std::optional<std::array<double, N>> readNumbers(Ctx& c, const json& j, const std::string& ptr,
+                                                 const Range& r = kAny,
+                                                 const std::string& name = {}) {
     const std::string expect = "expected an array of " + std::to_string(N) + " numbers";
     if (!j.is_array() || j.size() != N) {
         c.error("SCENARIO_TYPE", ptr,
@@ -125,6 +142,12 @@ std::optional<std::array<double, N>> readNumbers(Ctx& c, const json& j, const st
             return std::nullopt;
         }
         out[i] = j[i].get<double>();
+        if (!r.contains(out[i])) {
+            c.error("SCENARIO_RANGE", childPointer(ptr, i),
+                    (name.empty() ? "value" : name) + " must be " + r.text() + ", got " +
+                        numberText(out[i]));
+            return std::nullopt;
+        }
     }
     return out;
 }
@@ -236,10 +259,10 @@ public:
         return std::nullopt;
     }
     template <std::size_t N>
-    std::optional<std::array<double, N>> numbers(const std::string& key,
+    std::optional<std::array<double, N>> numbers(const std::string& key, const Range& r = kAny,
                                                  bool required = false) const {
         const json* j = get(key, required);
-        return j ? readNumbers<N>(mC, *j, at(key)) : std::nullopt;
+        return j ? readNumbers<N>(mC, *j, at(key), r, key) : std::nullopt;
     }
     std::optional<color::Rgba> color(const std::string& key, bool required = false) const {
         const json* j = get(key, required);

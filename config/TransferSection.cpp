@@ -49,7 +49,7 @@ std::optional<TransferFunctionDef> Reader::transfer(const json& j, const std::st
         return std::nullopt;
     }
     std::optional<std::pair<double, double>> domain;
-    if (auto d = o.numbers<2>("domain")) {
+    if (auto d = o.numbers<2>("domain", kDataValue)) {
         if (!((*d)[0] < (*d)[1]))
             mC.error("SCENARIO_RANGE", o.at("domain"), "domain must be [min, max] with min < max");
         else
@@ -70,7 +70,7 @@ std::optional<TransferFunctionDef> Reader::transfer(const json& j, const std::st
         std::optional<double> last;
         for (std::size_t i = 0; i < arr->size(); ++i) {
             Obj s(mC, (*arr)[i], childPointer(o.at("stops"), i), "Stop");
-            auto v = s.num("value", kAny, true);
+            auto v = s.num("value", kDataValue, true);
             auto c = s.color("color", true);
             if (v && c) tf.stops.push_back({*v, *c});
             if (v && last && *last > *v)
@@ -87,7 +87,7 @@ std::optional<TransferFunctionDef> Reader::transfer(const json& j, const std::st
         std::optional<double> last;
         for (std::size_t i = 0; i < arr->size(); ++i) {
             Obj s(mC, (*arr)[i], childPointer(o.at("classes"), i), "ClassBreak");
-            auto v = s.num("from", kAny, true);
+            auto v = s.num("from", kDataValue, true);
             auto c = s.color("color", true);
             auto label = s.str("label");
             if (v && c) tf.classes.push_back({*v, *c, label.value_or("")});
@@ -157,7 +157,7 @@ std::optional<TransferFunctionDef> Reader::transfer(const json& j, const std::st
         tf.opacity.clear();
         for (std::size_t i = 0; i < arr->size(); ++i) {
             Obj p(mC, (*arr)[i], childPointer(o.at("opacity"), i), "OpacityPoint");
-            auto v = p.num("value", kAny, true);
+            auto v = p.num("value", kDataValue, true);
             auto a = p.num("opacity", kUnit, true);
             if (v && a) tf.opacity.push_back({*v, *a});
         }

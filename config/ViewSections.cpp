@@ -6,10 +6,10 @@ namespace kiosk::config::reader {
 std::optional<Viewpoint> Reader::viewpoint(const Obj& o, bool targetRequired) {
     Viewpoint v;
     v.pointer = o.ptr();
-    assign(v.target, o.numbers<3>("target", targetRequired));
+    assign(v.target, o.numbers<3>("target", kMapCoordinate, targetRequired));
     assign(v.heading, o.num("heading", Range{-360, 360}));
     assign(v.pitch, o.num("pitch", Range{-90, 90}));
-    assign(v.range, o.num("range", kPositive));
+    assign(v.range, o.num("range", kMapLength));
     return v;
 }
 

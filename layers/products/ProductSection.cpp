@@ -44,14 +44,14 @@ void productOptions(Ctx& c, const Obj& layer, Layer& l) {
     only("isochrones", kind == LayerKind::Arrival, "arrival");
     only("velocity", kind == LayerKind::Hazard, "hazard");
     if (thresholded) {
-        if (auto t = o.num("threshold", kAny, true)) {
+        if (auto t = o.num("threshold", kDataValue, true)) {
             l.product.threshold = *t;
             l.product.hasThreshold = true;
         }
         assign(l.product.units, o.name("units"));
         assign(l.product.timeUnits, o.oneOf("timeUnits", kTimeUnits));
     }
-    if (kind == LayerKind::Arrival) assign(l.product.isochrones, o.num("isochrones", kPositive));
+    if (kind == LayerKind::Arrival) assign(l.product.isochrones, o.num("isochrones", kDataStep));
     if (kind == LayerKind::Hazard) assign(l.product.velocity, o.name("velocity"));
 }
 
