@@ -78,14 +78,80 @@ LonLatExtent lonLatExtent(GDALDatasetH ds) {
     return e;
 }
 
+int globeColumns(const double gt[6], int width) {
+    if (!(gt[1] > 0) || gt[2] != 0 || gt[4] != 0) return 0;
+    const double perGlobe = 360.0 / gt[1];
+    const long n = std::lround(perGlobe);
+    // Coordinates stored as float32 put the step a little off 360 / n.
+    if (n < 2 || std::fabs(perGlobe - double(n)) > 0.01) return 0;
+    if (width < n || width > n + kMaxWrapColumns) return 0;
+    // Degrees, not metres that happen to divide 360: the grid starts within one turn of 0.
+    if (gt[0] < -360.0 - 1e-9 || gt[0] >= 360.0) return 0;
+    return int(n);
+}
+
+namespace {
+
+// A VRT of the first `columns` columns of `ds` starting at column `k` and wrapping to column 0
+// after `columns` (k = 0: a plain window), placed at geotransform `ngt`.
+Result<GDALDatasetH> wrappedColumns(GDALDatasetH ds, DatasetChain& chain, int k, int columns,
+                                    const double ngt[6], const std::string& sourceName) {
+    const int height = GDALGetRasterYSize(ds);
+    VRTDatasetH vrt = VRTCreate(columns, height);
+    GDALDatasetH out = chain.add(GdalDataset(vrt));
+    GDALSetGeoTransform(out, const_cast<double*>(ngt));
+    if (const char* wkt = GDALGetProjectionRef(ds)) GDALSetProjection(out, wkt);
+    GDALSetMetadata(out, GDALGetMetadata(ds, nullptr), nullptr);
+    for (int b = 1; b <= GDALGetRasterCount(ds); ++b) {
+        GDALRasterBandH src = GDALGetRasterBand(ds, b);
+        VRTAddBand(vrt, GDALGetRasterDataType(src), nullptr);
+        GDALRasterBandH dst = GDALGetRasterBand(out, b);
+        int has = 0;
+        const double nodata = GDALGetRasterNoDataValue(src, &has);
+        if (has) GDALSetRasterNoDataValue(dst, nodata);
+        GDALSetRasterScale(dst, GDALGetRasterScale(src, nullptr));
+        GDALSetRasterOffset(dst, GDALGetRasterOffset(src, nullptr));
+        GDALSetRasterUnitType(dst, GDALGetRasterUnitType(src));
+        GDALSetRasterColorInterpretation(dst, GDALGetRasterColorInterpretation(src));
+        GDALSetMetadata(dst, GDALGetMetadata(src, nullptr), nullptr);
+        const double nd = has ? nodata : -1234567.0;  // VRT's "no nodata" marker
+        const bool ok =
+            VRTAddSimpleSource(VRTSourcedRasterBandH(dst), src, k, 0, columns - k, height, 0, 0,
+                               columns - k, height, "near", nd) == CE_None &&
+            (k == 0 || VRTAddSimpleSource(VRTSourcedRasterBandH(dst), src, 0, 0, k, height,
+                                          columns - k, 0, k, height, "near", nd) == CE_None);
+        if (!ok) {
+            Diagnostics d;
+            d.error("IMPORT_UNREADABLE", sourceName, "",
+                    gdalError("cannot roll the longitudes to -180..180"));
+            return d;
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
 Result<GDALDatasetH> normaliseLongitudes(GDALDatasetH ds, DatasetChain& chain,
                                          const std::string& sourceName) {
     double gt[6];
     if (GDALGetGeoTransform(ds, gt) != CE_None || gt[2] != 0 || gt[4] != 0 || !(gt[1] > 0))
         return ds;
+    const int width = GDALGetRasterXSize(ds);
+    if (const int globe = globeColumns(gt, width)) {
+        // The whole globe from any start meridian: the start moved into -180..180 by whole
+        // turns, the columns past 360 degrees dropped, and the columns whose centre is at or
+        // past 180 moved to the west end, so the grid runs from (about) -180 to 180.
+        const double west = gt[0] - 360.0 * std::floor((gt[0] + 180.0) / 360.0);
+        int k = 0;
+        if (west + globe * gt[1] > 180.0 + 1e-9)
+            k = std::clamp(int(std::ceil((180.0 - west) / gt[1] - 0.5)), 0, globe) % globe;
+        if (k == 0 && globe == width && west == gt[0]) return ds;
+        double ngt[6] = {west + k * gt[1] - (k ? 360.0 : 0.0), gt[1], 0, gt[3], 0, gt[5]};
+        return wrappedColumns(ds, chain, k, globe, ngt, sourceName);
+    }
     const LonLatExtent e = lonLatExtent(ds);
     if (e.east <= 180.0 + 1e-9) return ds;
-    const int width = GDALGetRasterXSize(ds), height = GDALGetRasterYSize(ds);
     Diagnostics d;
     if (e.west >= 180.0 - 1e-9) {
         // Wholly east of the dateline in 0..360 terms: the same grid 360 degrees west.
@@ -104,35 +170,8 @@ Result<GDALDatasetH> normaliseLongitudes(GDALDatasetH ds, DatasetChain& chain,
     int k = int(std::ceil((180.0 - e.west) / gt[1] - 0.5));
     k = std::clamp(k, 0, width);
     if (k == 0 || k == width) return ds;
-    VRTDatasetH vrt = VRTCreate(width, height);
-    GDALDatasetH out = chain.add(GdalDataset(vrt));
     double ngt[6] = {e.west + k * gt[1] - 360.0, gt[1], 0, gt[3], 0, gt[5]};
-    GDALSetGeoTransform(out, ngt);
-    if (const char* wkt = GDALGetProjectionRef(ds)) GDALSetProjection(out, wkt);
-    GDALSetMetadata(out, GDALGetMetadata(ds, nullptr), nullptr);
-    for (int b = 1; b <= GDALGetRasterCount(ds); ++b) {
-        GDALRasterBandH src = GDALGetRasterBand(ds, b);
-        VRTAddBand(vrt, GDALGetRasterDataType(src), nullptr);
-        GDALRasterBandH dst = GDALGetRasterBand(out, b);
-        int has = 0;
-        const double nodata = GDALGetRasterNoDataValue(src, &has);
-        if (has) GDALSetRasterNoDataValue(dst, nodata);
-        GDALSetRasterScale(dst, GDALGetRasterScale(src, nullptr));
-        GDALSetRasterOffset(dst, GDALGetRasterOffset(src, nullptr));
-        GDALSetRasterUnitType(dst, GDALGetRasterUnitType(src));
-        GDALSetRasterColorInterpretation(dst, GDALGetRasterColorInterpretation(src));
-        GDALSetMetadata(dst, GDALGetMetadata(src, nullptr), nullptr);
-        const double nd = has ? nodata : -1234567.0;  // VRT's "no nodata" marker
-        if (VRTAddSimpleSource(VRTSourcedRasterBandH(dst), src, k, 0, width - k, height, 0, 0,
-                               width - k, height, "near", nd) != CE_None ||
-            VRTAddSimpleSource(VRTSourcedRasterBandH(dst), src, 0, 0, k, height, width - k, 0, k,
-                               height, "near", nd) != CE_None) {
-            d.error("IMPORT_UNREADABLE", sourceName, "",
-                    gdalError("cannot roll the 0..360 longitudes"));
-            return d;
-        }
-    }
-    return out;
+    return wrappedColumns(ds, chain, k, width, ngt, sourceName);
 }
 
 StoreCrs autoTargetCrs(const LonLatExtent& e) {
@@ -248,7 +287,10 @@ Result<GDALDatasetH> georeference(GdalDataset source, PlaceOptions& opt,
             return d;
         }
         const LonLatExtent e = lonLatExtent(src);
-        if (geographic && (e.west < -180.0 - 1e-6 || e.east > 360.0 + 1e-6 ||
+        // A whole-globe grid may start at any meridian and repeat columns past 360 degrees
+        // (normaliseLongitudes drops them); its longitudes need no range.
+        const bool globe = globeColumns(gt, GDALGetRasterXSize(src)) > 0;
+        if (geographic && ((!globe && (e.west < -180.0 - 1e-6 || e.east > 360.0 + 1e-6)) ||
                            e.south < -90.0 - 1e-6 || e.north > 90.0 + 1e-6)) {
             char buf[200];
             std::snprintf(buf, sizeof buf,

@@ -34,11 +34,26 @@ struct LonLatExtent {
 };
 LonLatExtent lonLatExtent(GDALDatasetH ds);
 
+/** @brief Columns past the globe's that a whole-globe grid may repeat (a wrap column at the end,
+ *  or one at each side). */
+constexpr int kMaxWrapColumns = 2;
+
 /**
- * @brief Longitudes in -180..180 where possible: a grid wholly east of 180 (0..360 style) is
- * shifted by -360; a whole-globe 0..360 grid is rolled (a VRT of its two halves) to -180..180;
- * a regional grid crossing the dateline keeps continuous longitudes (170..190), which the
- * target CRS below handles. Returns `ds` itself when nothing changes; new datasets go to `chain`.
+ * @brief The number of columns that make one turn of the globe when the geotransform `gt` of a
+ * grid `width` columns wide (in degrees) is a whole globe: 360 / step a whole number n (within
+ * 1 % of a column), width n to n + kMaxWrapColumns, and the first column within -360..360;
+ * 0 otherwise.
+ */
+int globeColumns(const double gt[6], int width);
+
+/**
+ * @brief Longitudes in -180..180 where possible: a whole-globe grid (globeColumns) from any start
+ * meridian keeps its first turn of columns, dropping those past 360 degrees (they repeat
+ * meridians it has), and is rolled (a VRT of its two parts) to start near -180; a grid wholly
+ * east of 180 (0..360 style) is shifted by -360; another grid spanning the globe on 0..360 is
+ * rolled to -180..180; a regional grid crossing the dateline keeps continuous longitudes
+ * (170..190), which the target CRS below handles. Returns `ds` itself when nothing changes; new
+ * datasets go to `chain`.
  */
 Result<GDALDatasetH> normaliseLongitudes(GDALDatasetH ds, DatasetChain& chain,
                                          const std::string& sourceName);
@@ -49,9 +64,9 @@ Result<GDALDatasetH> normaliseLongitudes(GDALDatasetH ds, DatasetChain& chain,
  * normalised. Resolves the deprecated `opt.crs` into `opt.assignCrs` (CRS-less source) or
  * `opt.toCrs` (source with a CRS, CF lon/lat axes count as one). A CRS-less source on CF lon/lat
  * axes is WGS 84; assigning a projected CRS to such degrees, or a geographic CRS to coordinates
- * outside -180..360 / -90..90, is IMPORT_BAD_CRS. A curvilinear source (Curvilinear.h) is
- * returned as it is, `crs` being its geolocation arrays' and `*geolocation` set: it can only be
- * warped (and --assign-crs does not apply to it).
+ * outside -180..360 / -90..90 (longitudes of a whole-globe grid excepted), is IMPORT_BAD_CRS. A
+ * curvilinear source (Curvilinear.h) is returned as it is, `crs` being its geolocation arrays' and
+ * `*geolocation` set: it can only be warped (and --assign-crs does not apply to it).
  */
 struct Geolocation;
 Result<GDALDatasetH> georeference(GdalDataset source, PlaceOptions& opt,

@@ -1,6 +1,6 @@
 // Geographic inputs: non-square degree pixels in bounded memory, CF lon/lat NetCDF on 0..360
-// across the dateline, whole-globe rolls, the automatic target CRS, --assign-crs / --to-crs,
-// multi-band refusal and the pre-flight memory budget.
+// across the dateline, whole-globe rolls and wraps past 360 degrees, the automatic target CRS,
+// --assign-crs / --to-crs, multi-band refusal and the pre-flight memory budget.
 #include "runtime/app/ImportCommand.h"
 #include "runtime/import/Importer.h"
 #include "runtime/io/StoreReader.h"
@@ -274,6 +274,62 @@ TEST(GeographicImport, GlobalGridIsRolledAndRegionalEastOf180IsShifted) {
     r = openStore(rs);
     ASSERT_TRUE(r);
     EXPECT_EQ(r->info().grid.srsId, 32604);  // centre 202.5 E = 157.5 W: UTM zone 4 N
+}
+
+// Whole-globe grids that wrap past 360 degrees: ETOPO20 as Ferret ships it starts at 20 E and has
+// one column more than the globe; model output on 0..360 often repeats the first column at the
+// end. Each lands on -180..180 with the repeated column gone and every sample from its own
+// meridian (z is a function of the wrapped longitude, so a misplaced column shows).
+TEST(GeographicImport, GlobalGridsWrappingPast360AreNormalised) {
+    const fs::path dir = testDir();
+    auto wrapped = [](double lon) { return lon - 360.0 * std::floor(lon / 360.0); };
+    auto zg = [&](double lon, double lat) { return std::floor(wrapped(lon)) * 10.0 + lat + 90.0; };
+    struct Case {
+        const char* name;
+        double lon0;  // west edge; centres at lon0 + (i + 0.5) * step
+        int columns;
+        double step = 1.0;
+    };
+    for (const Case& c :
+         {Case{"etopo-like", 20.0, 361}, Case{"etopo20-spacing", 20.0, 1081, 1.0 / 3.0},
+          Case{"repeated-0-360", -0.5, 361}, Case{"from-200-west", -200.0, 360},
+          Case{"halo", -1.0, 362}}) {
+        SCOPED_TRACE(c.name);
+        const fs::path nc = dir / (std::string(c.name) + ".nc");
+        const int rows = int(std::lround(180.0 / c.step));
+        writeLonLatNetCdf(nc, c.lon0, -90.0, c.step, c.columns, rows, zg);
+        const fs::path store = dir / (std::string(c.name) + ".gpkg");
+        ImportOptions o = options(store);
+        o.toCrs = "EPSG:4326";
+        Diagnostics d = importElevation(nc.string(), o);
+        ASSERT_FALSE(d.hasErrors()) << d.format();
+        auto r = openStore(store);
+        ASSERT_TRUE(r);
+        const io::LayerInfo* l = r->info().findLayer("elevation");
+        ASSERT_NE(l, nullptr);
+        // One turn of columns from the column whose centre is nearest above -180.
+        EXPECT_NEAR(l->dataMaxX - l->dataMinX, 360.0, 1e-9);
+        EXPECT_GE(l->dataMinX, -180.5 - 1e-9);
+        EXPECT_LE(l->dataMinX, -180.0 + 1e-9);
+        int checked = 0;
+        forEachSample(*r, "elevation", [&](double lon, double lat, float v) {
+            if (lon > l->dataMaxX || lon < l->dataMinX) return;  // the tile matrix's padding
+            EXPECT_NEAR(v, zg(lon, lat), l->precision / 2 + 1e-3) << lon << " " << lat;
+            ++checked;
+        });
+        EXPECT_EQ(checked, int(std::lround(360.0 / c.step)) * rows);
+    }
+    // Without --to-crs the globe goes to the global projection, as any whole-globe grid.
+    const fs::path store = dir / "etopo-4087.gpkg";
+    Diagnostics d = importElevation((dir / "etopo-like.nc").string(), options(store));
+    ASSERT_FALSE(d.hasErrors()) << d.format();
+    auto r = openStore(store);
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->info().grid.srsId, 4087);
+    const io::LayerInfo* l = r->info().findLayer("elevation");
+    ASSERT_NE(l, nullptr);
+    EXPECT_NEAR(l->dataMinX, -20037508.34, 1.0);
+    EXPECT_NEAR(l->dataMaxX, 20037508.34, 1.0);
 }
 
 TEST(GeographicImport, CrsOptionsAndMultiBandRefusal) {
