@@ -397,11 +397,13 @@ private:
         if (auto it = f.index.keys.find(ptr); it != f.index.keys.end())
             map.setKey(ptr, {f.path.string(), it->second.line, it->second.column});
         if (depth > kMaxScenarioDepth) return;
+        // As indexJsonText: past kMaxIndexedItems a container is over a limit and refused.
         if (node.is_object()) {
-            for (auto it = node.begin(); it != node.end(); ++it)
+            std::size_t n = 0;
+            for (auto it = node.begin(); it != node.end() && n < kMaxIndexedItems; ++it, ++n)
                 walk(*it, childPointer(ptr, it.key()), origin, map, depth + 1);
         } else if (node.is_array()) {
-            for (std::size_t i = 0; i < node.size(); ++i)
+            for (std::size_t i = 0; i < node.size() && i < kMaxIndexedItems; ++i)
                 walk(node[i], childPointer(ptr, i), origin, map, depth + 1);
         }
     }

@@ -41,6 +41,8 @@ inline constexpr std::size_t kMaxKeys = 4096;
 inline constexpr std::size_t kMaxPoints = 4096;
 /** @brief Entries of `stores`, `transferFunctions`, `viewpoints`, `cameraPaths`. */
 inline constexpr std::size_t kMaxNamedEntries = 256;
+static_assert(kMaxIndexedItems > kMaxPoints && kMaxIndexedItems > kMaxKeys,
+              "positions of items within every limit must be kept (SourceMap.h)");
 
 /** @brief Texture units the layers of `doc` need (see kMaxTextureUnits). Never throws. */
 int textureUnitsNeeded(const nlohmann::json& doc);

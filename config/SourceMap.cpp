@@ -168,7 +168,7 @@ private:
             mOut.complete = false;
             return false;
         }
-        mOut.values[ptr] = posOf(mPos);
+        if (mUnindexed == 0) mOut.values[ptr] = posOf(mPos);
         const char c = peek();
         if (c == '{') return object(ptr, depth);
         if (c == '[') return array(ptr, depth);
@@ -194,20 +194,23 @@ private:
             ++mPos;
             return true;
         }
-        while (more()) {
+        for (std::size_t member = 0; more(); ++member) {
             skipSpace();
             if (peek() != '"') return false;
             const std::size_t keyStart = mPos;
             std::string key;
             if (!string(key)) return false;
             const std::string child = childPointer(ptr, key);
-            if (mOut.keys.count(child)) mOut.duplicateKeys.push_back(child);
-            mOut.keys[child] = posOf(keyStart);
+            const bool indexed = mUnindexed == 0 && member < kMaxIndexedItems;
+            if (indexed) {
+                if (mOut.keys.count(child)) mOut.duplicateKeys.push_back(child);
+                mOut.keys[child] = posOf(keyStart);
+            }
             skipSpace();
             if (peek() != ':') return false;
             ++mPos;
             skipSpace();
-            if (!value(child, depth + 1)) return false;
+            if (!indexedValue(indexed, child, depth + 1)) return false;
             skipSpace();
             if (peek() == ',') {
                 ++mPos;
@@ -231,7 +234,8 @@ private:
         }
         for (std::size_t index = 0; more(); ++index) {
             skipSpace();
-            if (!value(childPointer(ptr, index), depth + 1)) return false;
+            if (!indexedValue(index < kMaxIndexedItems, childPointer(ptr, index), depth + 1))
+                return false;
             skipSpace();
             if (peek() == ',') {
                 ++mPos;
@@ -246,10 +250,18 @@ private:
         return false;
     }
 
+    bool indexedValue(bool indexed, const std::string& ptr, int depth) {
+        mUnindexed += !indexed;
+        const bool ok = value(ptr, depth);
+        mUnindexed -= !indexed;
+        return ok;
+    }
+
     std::string_view mText;
     int mLimit;
     TextIndex& mOut;
     std::size_t mPos = 0;
+    int mUnindexed = 0;  // > 0 inside an item past kMaxIndexedItems: scanned, not indexed
     std::vector<std::size_t> mLineStarts;
 };
 

@@ -25,6 +25,13 @@ inline std::string childPointer(std::string_view parent, std::size_t index) {
     return std::string(parent) + "/" + std::to_string(index);
 }
 
+/**
+ * @brief Items of one array, members of one object, whose positions are kept. The largest limit
+ * on one container (config/Limits.h) is 4096, so a scenario with more is refused anyway; keeping
+ * the positions of a 220,000-stop list would cost hundreds of MB before it is.
+ */
+inline constexpr std::size_t kMaxIndexedItems = 4097;
+
 /** @brief Positions inside one text, by JSON pointer. Built by indexJsonText(). */
 struct TextIndex {
     struct Pos {
@@ -41,7 +48,8 @@ struct TextIndex {
 /**
  * @brief Index a JSON text (comments `//` and `/ * * /` allowed, as the reader allows them).
  * Never throws, never recurses deeper than `depthLimit` (deeper values are not indexed and
- * `complete` is false). Columns count UTF-8 code points, not bytes.
+ * `complete` is false). Items past the first kMaxIndexedItems of a container are scanned but
+ * not indexed. Columns count UTF-8 code points, not bytes.
  */
 TextIndex indexJsonText(std::string_view text, int depthLimit = 64);
 

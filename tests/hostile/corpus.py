@@ -103,6 +103,12 @@ def many_keys(d):
                                                          "end": "2026-03-15T00:00:00Z"}))
 
 
+def many_stops(d):
+    # About 14 MB: refused at the limit without keeping 660,000 positions (each within 300 MB).
+    stops = [{"value": i * 0.001, "color": "#12345678"} for i in range(220000)]
+    return write(d, "main.json", base(transferFunctions={"t": {"stops": stops}}))
+
+
 def clock(start):
     return lambda d: write(d, "main.json", base(clock={"start": start,
                                                        "end": "2026-03-15T00:00:00Z"}))
@@ -188,6 +194,8 @@ CASES = [
     ("texture-units", many_sequences, "/layers: the layers need 19 texture units; the limit is 16",
      False),
     ("keys-5000", many_keys, "/lenses/0/keys: 5000 keys exceed the limit of 4096", False),
+    ("stops-220000", many_stops,
+     "/transferFunctions/t/stops: 220000 entries exceed the limit of 4096", False),
     ("february-30", clock("2026-02-30T00:00:00Z"), '/clock/start: bad time "2026-02-30T00:00:00Z"',
      False),
     ("offset-400-digits", lens_time("+" + "9" * 400 + "s"), "/lenses/0/keys/0/time: bad time", False),
