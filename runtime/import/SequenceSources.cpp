@@ -8,6 +8,7 @@
 #include <cpl_string.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -153,7 +154,24 @@ Result<std::vector<Frame>> expandSources(const std::vector<std::string>& sources
                 if (v) values.push_back(std::strtod(v, nullptr));
             }
             if (units && int(values.size()) == bands) {
-                auto times = cfTimesToEpoch(values, units, cal ? cal : "standard");
+                // Forecast files (CAMS regional: `time:units = "hours"`) keep the reference date
+                // elsewhere; --start names it, else the message says to.
+                std::string unitText = units;
+                std::string lowered = unitText;
+                for (char& c : lowered) c = char(std::tolower(static_cast<unsigned char>(c)));
+                if (lowered.find(" since ") == std::string::npos) {
+                    if (!o.start) {
+                        d.error("CF_TIME_UNITS", f, timeDim + ":units",
+                                "time units '" + unitText +
+                                    "' name no reference date ('<unit> since <date>'); give the "
+                                    "forecast's reference time with --start TIME")
+                            .hint = "e.g. --start 2026-03-14T00:00:00Z; the values are then " +
+                                    unitText + " after it";
+                        return d;
+                    }
+                    unitText += " since " + formatIso8601(*o.start);
+                }
+                auto times = cfTimesToEpoch(values, unitText, cal ? cal : "standard");
                 if (!times) {
                     for (auto item : times.diagnostics.items()) {
                         item.file = f;

@@ -131,6 +131,39 @@ TEST(ImportSequence, NetCdfWithCfTimeAxis) {
     EXPECT_NEAR(tile->at(29, 19), 2.0 + 2.9, 1e-3);
 }
 
+// CAMS regional forecasts state `time:units = "hours"` with no reference date in the units: the
+// message names the option that gives it, and with --start the hours count from it.
+TEST(ImportSequence, ForecastHoursWithoutSinceTakeTheReferenceFromStart) {
+    const fs::path dir = testDir();
+    const fs::path nc = dir / "forecast.nc";
+    CfSequenceFile f;
+    f.times = {0, 12, 36};
+    f.timeUnits = "hours";
+    f.write(nc);
+    const fs::path store = dir / "forecast.gpkg";
+    ImportOptions o = options(store);
+    o.name = "depth";
+    o.variable = "depth";
+    Diagnostics d = importSequence({nc.string()}, o);
+    ASSERT_TRUE(d.hasErrors());
+    ASSERT_EQ(d.items().size(), 1u) << d.format();
+    EXPECT_EQ(d.firstError()->code, "CF_TIME_UNITS");
+    EXPECT_EQ(d.firstError()->file, nc.string());
+    EXPECT_NE(d.firstError()->message.find("give the forecast's reference time with --start"),
+              std::string::npos)
+        << d.format();
+    o.start = parseIso8601("2024-06-01T00:00:00Z");
+    d = importSequence({nc.string()}, o);
+    ASSERT_FALSE(d.hasErrors()) << d.format();
+    auto r = openStore(store);
+    const auto* s = r->info().findSequence("depth");
+    ASSERT_NE(s, nullptr);
+    ASSERT_EQ(s->frameTimes.size(), 3u);
+    EXPECT_EQ(formatIso8601(s->frameTimes[0]), "2024-06-01T00:00:00Z");
+    EXPECT_EQ(formatIso8601(s->frameTimes[1]), "2024-06-01T12:00:00Z");
+    EXPECT_EQ(formatIso8601(s->frameTimes[2]), "2024-06-02T12:00:00Z");
+}
+
 TEST(ImportSequence, Cell2FireBurnGridsKeepTheirCounts) {
     const std::string grids = sharedData("cell2fire_fire_spread/Harvest40x40/Grids/Grids1");
     if (grids.empty()) GTEST_SKIP() << "../shared/data not present (set KIOSK_SHARED_DATA)";
