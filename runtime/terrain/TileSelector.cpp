@@ -109,6 +109,16 @@ void TileSelector::nodeDomain(const TileId& id, const TileId& geometry, bool mes
         // Siblings cut the same mesh there, so the shared edge cannot crack (fragment clip).
         min = glm::dvec2(x0, y0);
         max = glm::dvec2(x1, y1);
+        // Across the sides of its ancestor A at the finest mesh level, the node may meet a
+        // node of A's level or coarser under the same G, whose domain is shifted by G's half
+        // post: sharing that shifted edge keeps G's descendants a partition of G's domain
+        // (clipped at its own edge, a texture-only node west or north of such a node left a
+        // strip of half a post of G uncovered on each axis).
+        const int inA = 1 << (id.level - mSetup.geometryMaxLevel);
+        if (id.column % inA == 0) min.x = x0 + 0.5 * px;
+        if ((id.column + 1) % inA == 0) max.x = x1 + 0.5 * px;
+        if (id.row % inA == 0) max.y = y1 - 0.5 * py;
+        if ((id.row + 1) % inA == 0) min.y = y0 - 0.5 * py;
     }
     // Sides on G's border keep G's skirts (their bottoms flare to half a post past the surface).
     const int span = 1 << (id.level - geometry.level);
