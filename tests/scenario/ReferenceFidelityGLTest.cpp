@@ -4,6 +4,7 @@
 // every LOD pixel's height is compared with the reference surface's at the same x, y.
 #include "runtime/app/Session.h"
 #include "tests/support/EglTestContext.h"
+#include "tests/support/FloatTiff.h"
 #include "tests/support/SettleView.h"
 #include "tests/support/StoreSurface.h"
 
@@ -13,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -218,6 +220,47 @@ TEST_F(ReferenceFidelity, DemoLodWithinOnePixelOfTheReference) {
                                     {glm::dvec3(600000, 5185000, 1500), 20, -20, 60000},  // oblique
                                     {glm::dvec3(594500, 5189560, 3000), 300, -55, 9000},  // close
                                 });
+}
+
+// The same bound on a store imported from a geographic source whose pixels are not square in
+// degrees (0.000279 x 0.000193 degrees at 46.85 N, about 21 m square on the ground), warped into
+// its UTM zone as a user's import does: four views along a tour around it.
+TEST_F(ReferenceFidelity, GeographicNonSquareDegreePixelsWithinOnePixelOfTheReference) {
+    const fs::path dir =
+        fs::temp_directory_path() / ("kiosk-reference-geo-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    test::RasterSpec dem;
+    dem.width = 701;
+    dem.height = 519;
+    const double gt[6] = {-121.9, 0.000279, 0, 46.95, 0, -0.000193};
+    std::copy(gt, gt + 6, dem.geoTransform);
+    dem.epsg = 4326;
+    ASSERT_EQ(test::writeRasterTiff((dir / "dem.tif").string(), dem,
+                                    [](int, int x, int y) {
+                                        const double u = x / 701.0, v = y / 519.0;
+                                        return 900 +
+                                               700 * std::sin(6.3 * u + 1) * std::cos(5.1 * v) +
+                                               300 * std::sin(17 * u) * std::sin(13 * v + 0.5);
+                                    }),
+              "");
+    const fs::path store = dir / "geo.gpkg";
+    ASSERT_EQ(
+        std::system(("'" + std::string(KIOSK_GEOKIOSK_BIN) + "' import elevation '" +
+                     (dir / "dem.tif").string() + "' --store '" + store.string() + "' --quiet")
+                        .c_str()),
+        0);
+    auto probe = open(store, false);
+    ASSERT_TRUE(probe);
+    const glm::dvec3 c = probe->terrain().bounds().center();
+    probe.reset();
+    expectWithinOnePixel(store, {
+                                    {glm::dvec3(c.x, c.y, 1000), 30, -35, 20000},
+                                    {glm::dvec3(c.x + 3000, c.y, 1000), 120, -25, 12000},
+                                    {glm::dvec3(c.x, c.y - 3000, 1000), 210, -45, 8000},
+                                    {glm::dvec3(c.x - 3000, c.y, 1000), 300, -20, 25000},
+                                });
+    std::error_code ec;
+    fs::remove_all(dir, ec);
 }
 
 }  // namespace
