@@ -98,6 +98,10 @@ std::string ImageHeader::describe() const {
     return std::to_string(bitDepth) + "-bit " + kind + " " + fmt;
 }
 
+bool declaresNormalMap(const std::string& description) noexcept {
+    return description.rfind("normal map of ", 0) == 0;
+}
+
 std::optional<ImageHeader> peekImageHeader(const std::uint8_t* data, std::size_t size) noexcept {
     if (!data) return std::nullopt;
     if (auto h = pngHeader(data, size)) return h;
@@ -115,11 +119,15 @@ Diagnostics checkTileHeader(const std::uint8_t* data, std::size_t size,
     }
     const bool formatOk = expect.scalar ? h->format == ImageFormat::Png && h->bitDepth == 16 &&
                                               h->channels == 1 && !h->palette
-                                        : h->bitDepth == 8 && h->channels >= 1 && h->channels <= 4;
+                          : expect.rgb ? h->format == ImageFormat::Png && h->bitDepth == 8 &&
+                                             h->channels >= 3 && h->channels <= 4
+                                       : h->bitDepth == 8 && h->channels >= 1 && h->channels <= 4;
     if (!formatOk) {
         d.error("STORE_TILE_FORMAT", "", where,
                 "tile is a " + h->describe() + "; this table holds " +
-                    (expect.scalar ? "16-bit grey PNGs" : "8-bit PNGs or JPEGs"));
+                    (expect.scalar ? "16-bit grey PNGs"
+                     : expect.rgb  ? "8-bit RGB or RGBA PNGs (a normal map)"
+                                   : "8-bit PNGs or JPEGs"));
         return d;
     }
     const std::uint64_t bytes = std::uint64_t(h->width) * h->height * std::uint64_t(h->channels) *

@@ -38,7 +38,12 @@ struct TileExpectation {
     int height = 0;
     /// true: elevation / sequence tables (16-bit grey PNG); false: imagery (8-bit PNG or JPEG)
     bool scalar = false;
+    /// imagery whose kiosk_layers.description declares RGB (a normal map): 8-bit RGB/RGBA PNG
+    bool rgb = false;
 };
+
+/** @brief Does a kiosk_layers.description declare a normal map (docs/store-format.md)? */
+bool declaresNormalMap(const std::string& description) noexcept;
 
 /** @brief Largest decoded tile accepted, whatever a table claims (the decode byte budget). */
 inline constexpr std::uint64_t kMaxTileDecodeBytes = 64ull << 20;

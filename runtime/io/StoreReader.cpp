@@ -1,12 +1,15 @@
 #include "runtime/io/StoreReader.h"
 
 #include "runtime/core/Strings.h"
+#include "runtime/io/ImageHeader.h"
 #include "runtime/io/SqliteDb.h"
+#include "runtime/io/StoreSchema.h"
 #include "runtime/io/StoreTables.h"
 
 #include <algorithm>
 #include <atomic>
 #include <map>
+#include <set>
 #include <system_error>
 
 namespace kiosk::io {
@@ -34,7 +37,7 @@ public:
     Result<ImageTile> readImagery(const std::string& layer, const TileId& id) override {
         const LayerInfo* l = mInfo.findLayer(layer);
         if (!l || l->kind != LayerKind::Imagery) return unknownLayer(layer, "imagery layer");
-        return mQueries.readImage(layer, id);
+        return mQueries.readImage(layer, id, mNormalMaps.count(layer) != 0);
     }
 
     Result<RasterTile> readSequenceFrame(const std::string& sequence, int frame,
@@ -101,9 +104,11 @@ private:
     StoreInfo mInfo;
     std::map<std::string, TileQueries::ScalarMeta> mMeta;
     std::map<std::string, std::vector<std::string>> mFrameTables;
-    bool mHasMeshes = false;  // kiosk_tile_meshes exists (stores imported since issue 20)
-    bool mHasTins = false;    // kiosk_tile_tins exists (import breaklines / model-mesh)
+    bool mHasMeshes = false;    // kiosk_tile_meshes exists (stores imported since issue 20)
+    bool mHasTins = false;      // kiosk_tile_tins exists (import breaklines / model-mesh)
     bool mHasTextures = false;  // kiosk_tile_textures exists (import textures)
+
+    std::set<std::string> mNormalMaps;  // imagery declared RGB (kiosk_layers.description)
 };
 
 Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
@@ -133,6 +138,9 @@ Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
                     : "GeoPackage without geokiosk tables (import it with 'geokiosk import')");
         return d;
     }
+    // Before any query names a column: drift is one line, not a "no such column" per tile.
+    d.append(checkStoreSchema(mDb));
+    if (d.hasErrors()) return d;
     auto g = mDb.prepare(
         "SELECT g.srs_id, g.min_x, g.min_y, g.max_x, g.max_y, g.tile_width, g.tile_height, "
         "g.levels, g.finest_pixel_size, s.srs_name, s.definition FROM kiosk_grid g LEFT JOIN "
@@ -161,8 +169,8 @@ Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
     auto ls = mDb.prepare(
         "SELECT l.table_name, l.kind, l.units, l.min_value, l.max_value, l.nodata, "
         "l.data_min_x, l.data_min_y, l.data_max_x, l.data_max_y, l.levels, l.tile_count, "
-        "a.scale, a.offset, a.data_null, l.precision FROM kiosk_layers l LEFT JOIN "
-        "gpkg_2d_gridded_coverage_ancillary a ON a.tile_matrix_set_name = l.table_name "
+        "a.scale, a.offset, a.data_null, l.precision, l.description FROM kiosk_layers l "
+        "LEFT JOIN gpkg_2d_gridded_coverage_ancillary a ON a.tile_matrix_set_name = l.table_name "
         "ORDER BY l.rowid");
     if (!ls) return ls.diagnostics;
     while (ls->step() == SQLITE_ROW) {
@@ -186,6 +194,8 @@ Diagnostics SqliteStoreReader::load(const std::filesystem::path& path) {
         li.levels = int(ls->columnInt(10));
         li.tileCount = ls->columnInt(11);
         li.precision = ls->columnIsNull(15) ? 0.0 : ls->columnDouble(15);
+        if (li.kind == LayerKind::Imagery && declaresNormalMap(ls->columnText(16)))
+            mNormalMaps.insert(li.name);
         if (li.kind != LayerKind::Imagery) {
             TileQueries::ScalarMeta meta;
             meta.tileWidth = tw;

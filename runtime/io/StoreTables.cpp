@@ -62,7 +62,10 @@ Result<RasterTile> TileQueries::readScalar(const std::string& table, const Scala
     Statement* st = statement(
         mScalar, table,
         "SELECT t.tile_data, a.scale, a.offset, s.border_posts, s.min_value, s.max_value, "
-        "s.geometric_error, a.tpudt_id IS NULL, s.table_name IS NULL FROM " +
+        "s.geometric_error, a.tpudt_id IS NULL, s.table_name IS NULL, typeof(a.scale) IN "
+        "('integer', 'real') AND typeof(a.offset) IN ('integer', 'real'), typeof(s.min_value) "
+        "IN ('integer', 'real') AND typeof(s.max_value) IN ('integer', 'real') AND "
+        "typeof(s.geometric_error) IN ('integer', 'real') FROM " +
             quoteIdentifier(table) +
             " t LEFT JOIN gpkg_2d_gridded_tile_ancillary a ON a.tpudt_name = ?1 AND "
             "a.tpudt_id = t.id LEFT JOIN kiosk_tile_stats s ON s.table_name = ?1 AND "
@@ -94,6 +97,19 @@ Result<RasterTile> TileQueries::readScalar(const std::string& table, const Scala
     if (missingRow) {
         d.error("STORE_TILE_CORRUPT", mDb->path(), where,
                 std::string("tile has no ") + missingRow + " row");
+        st->reset();
+        return d;
+    }
+    // Text such as 'NaN' reads as 0: a flat tile, or bounds that cull it, drawn as data.
+    const char* notNumbers = st->columnInt(9) == 0 ? "gpkg_2d_gridded_tile_ancillary scale/offset"
+                             : st->columnInt(10) == 0 || !std::isfinite(st->columnDouble(4)) ||
+                                     !std::isfinite(st->columnDouble(5)) ||
+                                     !std::isfinite(st->columnDouble(6))
+                                 ? "kiosk_tile_stats min/max/geometric_error"
+                                 : nullptr;
+    if (notNumbers) {
+        d.error("STORE_TILE_CORRUPT", mDb->path(), where,
+                std::string("tile's ") + notNumbers + " are not finite numbers");
         st->reset();
         return d;
     }
@@ -133,7 +149,7 @@ Result<RasterTile> TileQueries::readScalar(const std::string& table, const Scala
     return tile;
 }
 
-Result<ImageTile> TileQueries::readImage(const std::string& table, const TileId& id) {
+Result<ImageTile> TileQueries::readImage(const std::string& table, const TileId& id, bool rgb) {
     Diagnostics d;
     const std::string where = tileName(table, id);
     // The tile matrix says what size this level's tiles are: checked before decoding.
@@ -167,7 +183,7 @@ Result<ImageTile> TileQueries::readImage(const std::string& table, const TileId&
         st->reset();
         return d;
     }
-    const TileExpectation expect{int(st->columnInt(1)), int(st->columnInt(2)), false};
+    const TileExpectation expect{int(st->columnInt(1)), int(st->columnInt(2)), false, rgb};
     const Diagnostics header = checkTileHeader(data, size, expect, where);
     for (Diagnostic e : header.items()) {
         e.file = mDb->path();

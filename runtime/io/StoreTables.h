@@ -61,8 +61,8 @@ public:
     /** @brief Decode the posts of a scalar tile; STORE_TILE_MISSING / STORE_TILE_CORRUPT. */
     Result<RasterTile> readScalar(const std::string& table, const ScalarMeta& meta,
                                   const TileId& id);
-    /** @brief Decode an imagery tile to RGBA8. */
-    Result<ImageTile> readImage(const std::string& table, const TileId& id);
+    /** @brief Decode an imagery tile to RGBA8 (RGB or RGBA PNG only when `rgb`). */
+    Result<ImageTile> readImage(const std::string& table, const TileId& id, bool rgb = false);
     /**
      * @brief Into `out` (buffers reused): the stored mesh of a tile simplified with `tolerance`,
      * or else its tier-0 mesh of `baseTolerance` when that carries split tiers (the caller
